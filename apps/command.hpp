@@ -1,0 +1,51 @@
+// Command registry of the `gridslam` program (DESIGN.md §2). Each subcommand lives in its own
+// cmd_<name>.cpp and registers itself at start-up with GRIDSLAM_REGISTER_COMMAND; main() parses
+// argv with CLI11, loads the configuration, and runs the chosen subcommand. Only apps/ knows
+// argv and file paths; the library takes option structs.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "gridslam/common/result.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
+
+namespace gridslam::app {
+
+/// What every subcommand gets when it runs.
+struct AppContext {
+  SlamOptions options;      ///< Defaults, overridden by --config and command-line flags.
+  std::string config_path;  ///< The --config file, if any.
+};
+
+/// Exit codes (DESIGN.md §2).
+constexpr int kExitOk = 0;
+constexpr int kExitRuntimeError = 1;
+constexpr int kExitBadInput = 2;
+
+/// Prints an error and returns its exit code (2 for bad input, 1 otherwise).
+int ReportError(const Error& error);
+
+/// A subcommand: `setup` adds the subcommand's options to `sub` and returns the function that
+/// runs it once parsing and configuration are done.
+using RunFunction = std::function<int(AppContext&)>;
+struct CommandSpec {
+  std::string name;
+  std::string description;
+  std::function<RunFunction(CLI::App& sub, AppContext& context)> setup;
+};
+
+/// Adds a command to the registry; returns a dummy so it can initialize a static.
+int RegisterCommand(CommandSpec spec);
+std::vector<CommandSpec>& Commands();
+
+}  // namespace gridslam::app
+
+#define GRIDSLAM_CONCAT_INNER(a, b) a##b
+#define GRIDSLAM_CONCAT(a, b) GRIDSLAM_CONCAT_INNER(a, b)
+#define GRIDSLAM_REGISTER_COMMAND(...)                                   \
+  static const int GRIDSLAM_CONCAT(gridslam_command_registered_, __LINE__) = \
+      ::gridslam::app::RegisterCommand(__VA_ARGS__)

@@ -1,0 +1,9 @@
+# Warnings for project targets only (third-party headers are included as SYSTEM).
+set(GRIDSLAM_WARNINGS -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wcast-align
+    -Woverloaded-virtual -Wnon-virtual-dtor)
+if(GRIDSLAM_WERROR)
+  list(APPEND GRIDSLAM_WARNINGS -Werror)
+endif()
+function(gridslam_set_warnings target)
+  target_compile_options(${target} PRIVATE ${GRIDSLAM_WARNINGS})
+endfunction()

@@ -1,0 +1,39 @@
+#include "gridslam/common/time.hpp"
+
+#include <gtest/gtest.h>
+
+namespace gridslam {
+namespace {
+
+TEST(Time, ParsesCarmenTimestampsExactly) {
+  const auto t = ParseSeconds("976052864.458620");
+  ASSERT_TRUE(t.has_value());
+  EXPECT_EQ(t->time_since_epoch().count(), 976052864458620000LL);
+  EXPECT_EQ(FormatSeconds(*t), "976052864.458620");
+}
+
+TEST(Time, ParsesNegativeIntegerAndShortFractions) {
+  EXPECT_EQ(ParseSeconds("-0.958593")->time_since_epoch().count(), -958593000LL);
+  EXPECT_EQ(ParseSeconds("12")->time_since_epoch().count(), 12000000000LL);
+  EXPECT_EQ(ParseSeconds("1.5")->time_since_epoch().count(), 1500000000LL);
+  EXPECT_EQ(ParseSeconds("1e3")->time_since_epoch().count(), 1000000000000LL);
+  EXPECT_EQ(FormatSeconds(*ParseSeconds("-0.958593")), "-0.958593");
+  EXPECT_EQ(FormatSeconds(*ParseSeconds("1211.5"), 3), "1211.500");
+}
+
+TEST(Time, RejectsMalformedText) {
+  EXPECT_FALSE(ParseSeconds("").has_value());
+  EXPECT_FALSE(ParseSeconds("abc").has_value());
+  EXPECT_FALSE(ParseSeconds("1.2.3").has_value());
+  EXPECT_FALSE(ParseSeconds("-").has_value());
+  EXPECT_FALSE(ParseSeconds("12x").has_value());
+}
+
+TEST(Time, RoundTripsThroughDoubleSeconds) {
+  const Time t = FromSeconds(1211.25);
+  EXPECT_DOUBLE_EQ(ToSeconds(t), 1211.25);
+  EXPECT_DOUBLE_EQ(ToSeconds(SecondsToDuration(0.1)), 0.1);
+}
+
+}  // namespace
+}  // namespace gridslam

@@ -1,0 +1,42 @@
+// Options of the CARMEN log reader (FORMATS.md §1).
+#pragma once
+
+#include <vector>
+
+#include "gridslam/common/options.hpp"
+
+namespace gridslam::io {
+
+struct CarmenOptions {
+  /// Range values that mean "no return" in the project's logs (FORMATS.md §1.5).
+  std::vector<double> no_return_values = {81.83, 81.91};
+  /// Readings at or beyond this are no-returns, whatever the line's maximum_range says [m].
+  double max_usable_range = 80.0;
+  /// Laser mounting on the robot (x, y, theta) [m, m, rad]; empty = from PARAM lines,
+  /// ROBOTLASER1 poses or FLASER's two poses, else identity.
+  std::vector<double> laser_offset = {};
+  /// Repair intel-style unpadded microseconds and late stamps for ordering and odometry
+  /// interpolation (scans keep their printed timestamps as identity).
+  bool repair_timestamps = true;
+  /// Skip and count malformed lines of known types instead of stopping with an error.
+  bool lenient = false;
+
+  template <class V>
+  void Visit(V& v) {
+    v("no_return_values", no_return_values, "Range values meaning 'no return' [m]");
+    v("max_usable_range", max_usable_range, "Readings at or beyond this are no-returns [m]");
+    v("laser_offset", laser_offset,
+      "Laser pose on the robot [x m, y m, theta rad]; [] = from the log (PARAM/ROBOTLASER1)");
+    v("repair_timestamps", repair_timestamps,
+      "Repair out-of-order/unpadded timestamps for odometry interpolation");
+    v("lenient", lenient, "Skip and count malformed lines instead of failing");
+  }
+  [[nodiscard]] Status Validate() const {
+    GRIDSLAM_RETURN_IF_ERROR(Require(max_usable_range > 0.0, "log.max_usable_range > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(laser_offset.empty() || laser_offset.size() == 3,
+                                     "log.laser_offset has 0 or 3 values"));
+    return Status::Ok();
+  }
+};
+
+}  // namespace gridslam::io

@@ -1,0 +1,183 @@
+// Generic YAML reader and writer for options structs that follow the Visit() convention of
+// common/options.hpp. Unknown keys are errors naming the file and key; missing keys keep their
+// defaults. The writer prints every key with its documentation as a comment, which is what
+// `gridslam --print-config` shows and what every run saves beside its results.
+#pragma once
+
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "gridslam/common/result.hpp"
+
+namespace gridslam::io {
+
+namespace internal {
+
+/// Reads fields from one YAML mapping; records the first error and the keys it knows.
+class YamlReadVisitor {
+ public:
+  YamlReadVisitor(const YAML::Node& node, std::string path, std::string file)
+      : node_(node), path_(std::move(path)), file_(std::move(file)) {}
+
+  template <typename T>
+  void operator()(const char* key, T& field, const char* /*doc*/) {
+    known_.insert(key);
+    if (!status_.ok() || !node_ || !node_[key]) {
+      return;
+    }
+    try {
+      if constexpr (std::is_same_v<T, std::vector<double>>) {
+        field = node_[key].template as<std::vector<double>>();
+      } else {
+        field = node_[key].template as<T>();
+      }
+    } catch (const YAML::Exception& e) {
+      status_ = InvalidInput("option '" + Qualified(key) + "': cannot read a value of the right "
+                             "type (" + e.msg + ")", file_, node_[key].Mark().line + 1);
+    }
+  }
+
+  template <typename Sub>
+  void Section(const char* key, Sub& sub, const char* /*doc*/) {
+    known_.insert(key);
+    if (!status_.ok() || !node_ || !node_[key]) {
+      return;
+    }
+    if (!node_[key].IsMap()) {
+      status_ = InvalidInput("section '" + Qualified(key) + "' must be a mapping", file_,
+                             node_[key].Mark().line + 1);
+      return;
+    }
+    YamlReadVisitor child(node_[key], Qualified(key), file_);
+    sub.Visit(child);
+    status_ = child.Finish();
+  }
+
+  /// Checks for unknown keys; returns the first error.
+  Status Finish() {
+    if (!status_.ok() || !node_ || !node_.IsMap()) {
+      return status_;
+    }
+    for (const auto& kv : node_) {
+      const auto key = kv.first.as<std::string>();
+      if (known_.count(key) == 0) {
+        return InvalidInput("unknown option '" + Qualified(key) + "'", file_,
+                            kv.first.Mark().line + 1);
+      }
+    }
+    return status_;
+  }
+
+ private:
+  std::string Qualified(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  YAML::Node node_;
+  std::string path_;
+  std::string file_;
+  std::set<std::string> known_;
+  Status status_;
+};
+
+/// Writes fields as commented YAML.
+class YamlWriteVisitor {
+ public:
+  explicit YamlWriteVisitor(std::ostringstream& out, int indent = 0) : out_(out), indent_(indent) {}
+
+  template <typename T>
+  void operator()(const char* key, T& field, const char* doc) {
+    out_ << Pad() << "# " << doc << "\n" << Pad() << key << ": ";
+    if constexpr (std::is_same_v<T, bool>) {
+      out_ << (field ? "true" : "false");
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      out_ << '"' << field << '"';
+    } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+      out_ << "[";
+      for (std::size_t i = 0; i < field.size(); ++i) {
+        out_ << (i > 0 ? ", " : "") << Number(field[i]);
+      }
+      out_ << "]";
+    } else if constexpr (std::is_floating_point_v<T>) {
+      out_ << Number(field);
+    } else {
+      out_ << field;
+    }
+    out_ << "\n";
+  }
+
+  template <typename Sub>
+  void Section(const char* key, Sub& sub, const char* doc) {
+    out_ << Pad() << "# " << doc << "\n" << Pad() << key << ":\n";
+    YamlWriteVisitor child(out_, indent_ + 2);
+    sub.Visit(child);
+  }
+
+ private:
+  static std::string Number(double v) {
+    std::ostringstream s;
+    s.precision(12);
+    s << v;
+    std::string text = s.str();
+    if (text.find_first_of(".eEn") == std::string::npos) {
+      text += ".0";
+    }
+    return text;
+  }
+  std::string Pad() const { return std::string(static_cast<std::size_t>(indent_), ' '); }
+  std::ostringstream& out_;
+  int indent_;
+};
+
+}  // namespace internal
+
+/// Overrides `options` from the YAML text `yaml` (`file` names it in errors), then validates.
+template <typename Options>
+Status LoadOptionsFromString(const std::string& yaml, const std::string& file, Options& options) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    return InvalidInput("YAML syntax error: " + e.msg, file, e.mark.line + 1);
+  }
+  if (root.IsNull()) {
+    return options.Validate();
+  }
+  if (!root.IsMap()) {
+    return InvalidInput("configuration must be a YAML mapping", file, 1);
+  }
+  internal::YamlReadVisitor visitor(root, "", file);
+  options.Visit(visitor);
+  GRIDSLAM_RETURN_IF_ERROR(visitor.Finish());
+  return options.Validate();
+}
+
+/// Reads a YAML file into `options` (keys absent from the file keep their values).
+template <typename Options>
+Status LoadOptionsFromFile(const std::string& path, Options& options);
+
+/// The options as commented YAML.
+template <typename Options>
+std::string OptionsToYaml(Options options) {
+  std::ostringstream out;
+  internal::YamlWriteVisitor visitor(out);
+  options.Visit(visitor);
+  return out.str();
+}
+
+/// Reads a whole text file; NotFound if it cannot be opened.
+Result<std::string> ReadTextFile(const std::string& path);
+
+template <typename Options>
+Status LoadOptionsFromFile(const std::string& path, Options& options) {
+  auto text = ReadTextFile(path);
+  if (!text.ok()) {
+    return text.error();
+  }
+  return LoadOptionsFromString(text.value(), path, options);
+}
+
+}  // namespace gridslam::io

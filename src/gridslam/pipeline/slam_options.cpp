@@ -1,0 +1,1 @@
+#include "gridslam/pipeline/slam_options.hpp"
