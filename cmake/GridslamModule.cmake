@@ -63,7 +63,7 @@ endfunction()
 
 # gridslam_glob_module(<name> [DEPS ...] [TEST_DEPS ...] [TEST_LABELS ...])
 #   The module's library from every *.cpp in the current folder that is not a *_test.cpp, and
-#   one test executable <name>_test from every *_test.cpp, so files can be added without
+#   one test executable per *_test.cpp (named after the file), so files can be added without
 #   touching CMake.
 function(gridslam_glob_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS;TEST_LABELS" ${ARGN})
@@ -75,8 +75,10 @@ function(gridslam_glob_module name)
     list(REMOVE_ITEM sources ${test_sources})
   endif()
   gridslam_add_module(${name} SOURCES ${sources} DEPS ${ARG_DEPS})
-  if(test_sources)
-    gridslam_add_test(${name}_test SOURCES ${test_sources} DEPS ${name} ${ARG_TEST_DEPS}
+  # One executable per test file, so a test being edited never blocks the module's others.
+  foreach(test_source IN LISTS test_sources)
+    get_filename_component(test_name ${test_source} NAME_WE)
+    gridslam_add_test(${test_name} SOURCES ${test_source} DEPS ${name} ${ARG_TEST_DEPS}
                       LABELS ${ARG_TEST_LABELS})
-  endif()
+  endforeach()
 endfunction()

@@ -1,0 +1,1 @@
+#include "gridslam/eval/relation.hpp"

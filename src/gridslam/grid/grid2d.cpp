@@ -1,0 +1,1 @@
+#include "gridslam/grid/grid2d.hpp"
