@@ -78,7 +78,11 @@ function(gridslam_glob_module name)
   # One executable per test file, so a test being edited never blocks the module's others.
   foreach(test_source IN LISTS test_sources)
     get_filename_component(test_name ${test_source} NAME_WE)
+    set(labels ${ARG_TEST_LABELS})
+    if(test_name MATCHES "_integration_test$")
+      set(labels integration)  # real data or long runs: not rerun under the sanitizers
+    endif()
     gridslam_add_test(${test_name} SOURCES ${test_source} DEPS ${name} ${ARG_TEST_DEPS}
-                      LABELS ${ARG_TEST_LABELS})
+                      LABELS ${labels})
   endforeach()
 endfunction()
