@@ -20,6 +20,13 @@ struct CarmenOptions {
   bool repair_timestamps = true;
   /// Skip and count malformed lines of known types instead of stopping with an error.
   bool lenient = false;
+  /// FLASER/RLASER lines carry no beam geometry: first beam angle [rad] (CARMEN: -pi/2) and
+  /// beam step [rad]; 0 = CARMEN's guess from the beam count (carmen_laser_guess_angle_increment).
+  double flaser_angle_min = -1.5707963267948966;
+  double flaser_angle_increment = 0.0;
+  /// A pose-less scan (RAWLASER*) waits at most this long in log time for an ODOM line at or
+  /// after its timestamp before its odometry is clamped to the latest ODOM line [s].
+  double max_lookahead = 10.0;
 
   template <class V>
   void Visit(V& v) {
@@ -30,11 +37,19 @@ struct CarmenOptions {
     v("repair_timestamps", repair_timestamps,
       "Repair out-of-order/unpadded timestamps for odometry interpolation");
     v("lenient", lenient, "Skip and count malformed lines instead of failing");
+    v("flaser_angle_min", flaser_angle_min, "First beam angle of FLASER/RLASER lines [rad]");
+    v("flaser_angle_increment", flaser_angle_increment,
+      "Beam step of FLASER/RLASER lines [rad]; 0 = CARMEN's guess from the beam count");
+    v("max_lookahead", max_lookahead,
+      "Longest wait in log time for the ODOM line after a pose-less scan [s]");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(Require(max_usable_range > 0.0, "log.max_usable_range > 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(laser_offset.empty() || laser_offset.size() == 3,
                                      "log.laser_offset has 0 or 3 values"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(flaser_angle_increment >= 0.0,
+                                     "log.flaser_angle_increment >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(max_lookahead > 0.0, "log.max_lookahead > 0"));
     return Status::Ok();
   }
 };

@@ -5,19 +5,44 @@
 #pragma once
 
 #include "gridslam/common/options.hpp"
+#include "gridslam/features/surf_options.hpp"
 #include "gridslam/io/carmen_options.hpp"
+#include "gridslam/matching/align.hpp"
+#include "gridslam/eval/eval_options.hpp"
+#include "gridslam/pose_graph/optimizer.hpp"
+#include "gridslam/scan_matching/front_end_options.hpp"
+#include "gridslam/simulation/simulation_options.hpp"
 
 namespace gridslam {
 
 struct SlamOptions {
   io::CarmenOptions log;  ///< Reading CARMEN logs.
+  scan_matching::FrontEndOptions front_end;  ///< Scan matching, local map, key maps.
+  features::SurfOptions surf;  ///< SURF key-map description.
+  matching::AlignOptions matching;  ///< Key-map alignment (matching, RANSAC, verification).
+  eval::EvalOptions eval;  ///< Benchmark relation metric.
+  pose_graph::OptimizerOptions optimizer;  ///< Pose-graph optimization.
+  simulation::SimulationOptions simulation;  ///< `gridslam simulate`.
 
   template <class V>
   void Visit(V& v) {
     v.Section("log", log, "Reading CARMEN laser logs (FORMATS.md section 1)");
+    v.Section("front_end", front_end,
+              "Front end: local map, scan matching, key maps (DESIGN.md 1.2-1.3)");
+    v.Section("surf", surf, "SURF features of key maps (DESIGN.md 1.4; Bay et al. 2008)");
+    v.Section("matching", matching, "Key-map alignment without prior (DESIGN.md section 1.5)");
+    v.Section("eval", eval, "Benchmark relation metric (DESIGN.md section 3.1)");
+    v.Section("optimizer", optimizer, "Pose-graph optimization (DESIGN.md section 1.7)");
+    v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(log.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(front_end.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(surf.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(matching.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(eval.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(optimizer.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(simulation.Validate());
     return Status::Ok();
   }
 };

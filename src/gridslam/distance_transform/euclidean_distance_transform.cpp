@@ -1,0 +1,187 @@
+#include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/core.hpp>
+
+#include "gridslam/common/check.hpp"
+
+namespace gridslam::distance_transform {
+
+void SquaredDistance1D(const float* f, int n, float* d, int32_t* arg, int32_t* v, float* z) {
+  // Lower envelope of the parabolas y = (x - p)^2 + f[p] of the finite samples (F&H §3, Algorithm
+  // DT(f)); samples that are not finite are skipped rather than carried as a large number.
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    const float fq = f[q];
+    if (!(fq < kInfinity)) {
+      continue;
+    }
+    const auto qf = static_cast<float>(q);
+    if (k < 0) {
+      k = 0;
+      v[0] = q;
+      z[0] = -kInfinity;
+      z[1] = kInfinity;
+      continue;
+    }
+    float s = 0.0F;
+    while (true) {
+      const int p = v[k];
+      const auto pf = static_cast<float>(p);
+      // Abscissa where the parabola of q overtakes the rightmost parabola of the envelope.
+      s = ((fq + qf * qf) - (f[p] + pf * pf)) / (2.0F * qf - 2.0F * pf);
+      if (s <= z[k]) {
+        --k;  // never below 0: z[0] = -inf
+      } else {
+        break;
+      }
+    }
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = kInfinity;
+  }
+  if (k < 0) {
+    std::fill(d, d + n, kInfinity);
+    if (arg != nullptr) {
+      std::fill(arg, arg + n, -1);
+    }
+    return;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    const auto qf = static_cast<float>(q);
+    while (z[k + 1] < qf) {
+      ++k;
+    }
+    const int p = v[k];
+    const auto dq = static_cast<float>(q - p);
+    d[q] = dq * dq + f[p];
+    if (arg != nullptr) {
+      arg[q] = p;
+    }
+  }
+}
+
+void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width, int height,
+                                       SquaredDistanceField& out, bool with_nearest,
+                                       float max_distance) {
+  GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
+  const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  out.width = width;
+  out.height = height;
+  out.squared.resize(num_cells);
+  if (with_nearest) {
+    out.nearest.resize(num_cells);
+  } else {
+    out.nearest.clear();
+  }
+  if (num_cells == 0) {
+    return;
+  }
+  const auto w = static_cast<std::size_t>(width);
+  const float max_squared = max_distance < kInfinity ? max_distance * max_distance : kInfinity;
+
+  // Column pass with two linear scans (the input is binary): vertical distance to the nearest
+  // source of the column, kept as a squared value in `g` and its row in `source_row`.
+  constexpr int kFar = 1 << 28;
+  std::vector<int32_t> last(w, -kFar);
+  std::vector<int32_t> source_row(num_cells);
+  std::vector<float> g(num_cells);
+  for (int j = 0; j < height; ++j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = source_row.data() + static_cast<std::size_t>(j) * w;
+    for (std::size_t i = 0; i < w; ++i) {
+      last[i] = src[i] != 0 ? j : last[i];
+      row[i] = last[i];
+    }
+  }
+  std::fill(last.begin(), last.end(), kFar);
+  for (int j = height - 1; j >= 0; --j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = source_row.data() + static_cast<std::size_t>(j) * w;
+    float* grow = g.data() + static_cast<std::size_t>(j) * w;
+    for (std::size_t i = 0; i < w; ++i) {
+      last[i] = src[i] != 0 ? j : last[i];
+      const int32_t below = j - row[i];  // source at or below row j (lower index)
+      const int32_t above = last[i] - j;
+      const int32_t best = std::min(below, above);
+      row[i] = below <= above ? row[i] : last[i];
+      const auto bf = static_cast<float>(best);
+      const float sq = best >= kFar / 2 ? kInfinity : bf * bf;
+      grow[i] = sq <= max_squared ? sq : kInfinity;
+    }
+  }
+
+  // Row pass: 1-D lower envelope on every row of the column result.
+  std::vector<int32_t> v(w);
+  std::vector<float> z(w + 1);
+  std::vector<int32_t> arg(w);
+  for (int j = 0; j < height; ++j) {
+    const std::size_t offset = static_cast<std::size_t>(j) * w;
+    float* d = out.squared.data() + offset;
+    SquaredDistance1D(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr, v.data(),
+                      z.data());
+    if (with_nearest) {
+      int32_t* nearest = out.nearest.data() + offset;
+      for (std::size_t i = 0; i < w; ++i) {
+        const int32_t p = arg[i];
+        nearest[i] = p < 0 ? -1 : source_row[offset + static_cast<std::size_t>(p)] * width + p;
+      }
+    }
+    if (max_squared < kInfinity) {
+      for (std::size_t i = 0; i < w; ++i) {
+        if (d[i] > max_squared) {
+          d[i] = kInfinity;
+          if (with_nearest) {
+            out.nearest[offset + i] = -1;
+          }
+        }
+      }
+    }
+  }
+}
+
+cv::Mat DistanceTransformCells(const cv::Mat& image) {
+  GRIDSLAM_CHECK(image.type() == CV_8UC1) << "expects an 8-bit single-channel image";
+  const cv::Mat sources = (image == 0);  // 255 where zero
+  cv::Mat contiguous = sources.isContinuous() ? sources : sources.clone();
+  SquaredDistanceField field;
+  SquaredEuclideanDistanceTransform(contiguous.ptr<std::uint8_t>(), image.cols, image.rows, field);
+  cv::Mat out(image.rows, image.cols, CV_32F);
+  auto* dst = out.ptr<float>();
+  for (std::size_t k = 0; k < field.squared.size(); ++k) {
+    dst[k] = std::sqrt(field.squared[k]);
+  }
+  return out;
+}
+
+Grid2D<float> DistanceTransformMetres(const Grid2D<std::uint8_t>& is_source) {
+  SquaredDistanceField field;
+  SquaredEuclideanDistanceTransform(is_source.data(), is_source.Width(), is_source.Height(), field);
+  Grid2D<float> out(is_source.Limits(), kInfinity);
+  const auto resolution = static_cast<float>(is_source.Limits().Resolution());
+  for (std::size_t k = 0; k < field.squared.size(); ++k) {
+    out.data()[k] = std::sqrt(field.squared[k]) * resolution;
+  }
+  return out;
+}
+
+cv::Mat DistanceToImage(const cv::Mat& distance, double d_max) {
+  GRIDSLAM_CHECK(d_max > 0.0) << "d_max " << d_max;
+  GRIDSLAM_CHECK(distance.type() == CV_32F) << "expects CV_32F distances";
+  cv::Mat out(distance.rows, distance.cols, CV_8U);
+  for (int r = 0; r < distance.rows; ++r) {
+    const auto* src = distance.ptr<float>(r);
+    auto* dst = out.ptr<std::uint8_t>(r);
+    for (int c = 0; c < distance.cols; ++c) {
+      const double d = std::min(static_cast<double>(src[c]), d_max);
+      dst[c] = cv::saturate_cast<std::uint8_t>(d / d_max * 255.0);
+    }
+  }
+  return out;
+}
+
+}  // namespace gridslam::distance_transform

@@ -1,0 +1,49 @@
+// Options of the rolling-window local occupancy map (DESIGN.md §1.3; paper reconstruction §1.4).
+// Probabilities are converted to log-odds once; every length is in metres.
+#pragma once
+
+#include "gridslam/common/options.hpp"
+
+namespace gridslam {
+
+struct LocalMapOptions {
+  double resolution = 0.05;          ///< Cell side [m].
+  double size = 15.0;                ///< Window side [m]; the cell count is made odd.
+  double shift_distance = 1.0;       ///< Recentre when the robot is this far from the centre [m].
+  double hit_probability = 0.7;      ///< Inverse sensor model at a beam's end cell.
+  double miss_probability = 0.4;     ///< Inverse sensor model along the beam.
+  double min_probability = 0.12;     ///< Clamp (keeps the map able to change back).
+  double max_probability = 0.97;     ///< Clamp.
+  double occupied_probability = 0.6;  ///< Cells above are obstacles (matching, distance transform).
+  double max_range = 30.0;           ///< Returns beyond this are not inserted [m].
+  bool clear_no_returns = false;     ///< Whether max-range/no-return beams clear free space.
+  double no_return_clearing_range = 5.0;  ///< How far such beams clear, if enabled [m].
+  int surface_memory = 20;  ///< Hits averaged into a cell's mean point and normal (moving window).
+
+  /// Number of cells along each side (odd, so the window has a centre cell).
+  [[nodiscard]] int NumCells() const;
+
+  template <class V>
+  void Visit(V& v) {
+    v("resolution", resolution, "Cell side [m]");
+    v("size", size, "Side of the rolling window [m] (12-15 m; the cell count is made odd)");
+    v("shift_distance", shift_distance,
+      "The window is shifted (in whole cells) when the robot is this far from its centre [m]");
+    v("hit_probability", hit_probability, "Occupancy probability of a beam's end cell");
+    v("miss_probability", miss_probability, "Occupancy probability of cells a beam passed");
+    v("min_probability", min_probability, "Lower clamp of a cell's probability");
+    v("max_probability", max_probability, "Upper clamp of a cell's probability");
+    v("occupied_probability", occupied_probability,
+      "Cells above this probability are obstacles for matching and distance transforms");
+    v("max_range", max_range, "Returns farther than this are not inserted [m]");
+    v("clear_no_returns", clear_no_returns,
+      "Whether no-return (max-range) beams clear free space (they never mark obstacles)");
+    v("no_return_clearing_range", no_return_clearing_range,
+      "How far a no-return beam clears when clear_no_returns is set [m]");
+    v("surface_memory", surface_memory,
+      "Number of recent hits averaged into a cell's mean hit point and surface normal");
+  }
+  [[nodiscard]] Status Validate() const;
+};
+
+}  // namespace gridslam

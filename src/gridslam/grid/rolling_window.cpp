@@ -1,0 +1,239 @@
+#include "gridslam/grid/rolling_window.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gridslam/grid/log_odds.hpp"
+#include "gridslam/grid/ray_casting.hpp"
+
+namespace gridslam {
+namespace {
+
+// Beyond this many listed changes per update the consumer rebuilds everything anyway.
+constexpr std::size_t kMaxListedChanges = 1U << 16;
+
+// Returns `grid` moved by (di, dj) cells: new (i, j) = old (i + di, j + dj); the origin moves by
+// (di, dj) cells, entering cells get `fill`.
+template <typename T>
+Grid2D<T> Shifted(const Grid2D<T>& grid, int di, int dj, const T& fill) {
+  const MapLimits& old = grid.Limits();
+  const MapLimits limits(old.Resolution(),
+                         old.Origin() + Eigen::Vector2d(di, dj) * old.Resolution(), old.Width(),
+                         old.Height());
+  Grid2D<T> out(limits, fill);
+  const int w = old.Width();
+  const int i0 = std::max(0, -di);
+  const int i1 = std::min(w, w - di);
+  if (i0 >= i1) {
+    return out;
+  }
+  for (int j = 0; j < old.Height(); ++j) {
+    const int src_j = j + dj;
+    if (src_j < 0 || src_j >= old.Height()) {
+      continue;
+    }
+    std::copy(&grid(i0 + di, src_j), &grid(i0 + di, src_j) + (i1 - i0), &out(i0, j));
+  }
+  return out;
+}
+
+}  // namespace
+
+RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom)
+    : options_(options) {
+  GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
+  hit_ = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
+  miss_ = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
+  min_ = static_cast<float>(ProbabilityToLogOdds(options.min_probability));
+  max_ = static_cast<float>(ProbabilityToLogOdds(options.max_probability));
+  occupied_ = static_cast<float>(ProbabilityToLogOdds(options.occupied_probability));
+  const int n = options.NumCells();
+  const double res = options.resolution;
+  // Cells lie on the lattice of multiples of the resolution; the centre cell holds centre_odom.
+  const Eigen::Vector2d origin((std::floor(centre_odom.x() / res) - n / 2) * res,
+                               (std::floor(centre_odom.y() / res) - n / 2) * res);
+  const MapLimits limits(res, origin, n, n);
+  log_odds_ = Grid2D<float>(limits, kUnknownLogOdds);
+  obstacles_ = Grid2D<std::uint8_t>(limits, 0);
+  surfaces_ = Grid2D<CellSurface>(limits, CellSurface{});
+  stamps_.assign(static_cast<std::size_t>(limits.NumCells()), 0);
+}
+
+Eigen::Vector2d RollingWindow::Centre() const {
+  const MapLimits& limits = Limits();
+  return limits.CellCenter(Eigen::Array2i(limits.Width() / 2, limits.Height() / 2));
+}
+
+Eigen::Vector2d RollingWindow::MeanPoint(std::int32_t index) const {
+  const int w = Limits().Width();
+  const CellSurface& s = surfaces_.data()[index];
+  return Limits().CellCenter(Eigen::Array2i(index % w, index / w)) +
+         Eigen::Vector2d(s.mean_x, s.mean_y);
+}
+
+Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
+  const MapLimits& limits = Limits();
+  const Eigen::Array2i offset =
+      limits.CellIndex(p_odom) - Eigen::Array2i(limits.Width() / 2, limits.Height() / 2);
+  const int trigger = std::max(1, static_cast<int>(std::lround(options_.shift_distance /
+                                                               options_.resolution)));
+  const Eigen::Array2i shift(std::abs(offset.x()) >= trigger ? offset.x() : 0,
+                             std::abs(offset.y()) >= trigger ? offset.y() : 0);
+  if ((shift == 0).all()) {
+    return shift;
+  }
+  log_odds_ = Shifted(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
+  obstacles_ = Shifted(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
+  surfaces_ = Shifted(surfaces_, shift.x(), shift.y(), CellSurface{});
+  std::fill(stamps_.begin(), stamps_.end(), 0U);
+  stamp_ = 0;
+  num_obstacles_ = std::count(obstacles_.Cells().begin(), obstacles_.Cells().end(), 1);
+  // Pending changes follow their cells; those that left are dropped.
+  const int w = Limits().Width();
+  const int h = Limits().Height();
+  std::size_t kept = 0;
+  for (const std::int32_t index : changed_) {
+    const int i = index % w - shift.x();
+    const int j = index / w - shift.y();
+    if (i >= 0 && j >= 0 && i < w && j < h) {
+      changed_[kept++] = j * w + i;
+    }
+  }
+  changed_.resize(kept);
+  pending_shift_ += shift;
+  return shift;
+}
+
+void RollingWindow::MarkChanged(std::size_t index) {
+  if (changed_.size() < kMaxListedChanges) {
+    changed_.push_back(static_cast<std::int32_t>(index));
+  } else {
+    changes_overflow_ = true;
+  }
+}
+
+void RollingWindow::ApplyHit(std::size_t index) {
+  float& l = log_odds_.data()[index];
+  l = std::min(l + hit_, max_);
+  std::uint8_t& obstacle = obstacles_.data()[index];
+  if (obstacle == 0 && l > occupied_) {
+    obstacle = 1;
+    ++num_obstacles_;
+    MarkChanged(index);
+  }
+}
+
+void RollingWindow::ApplyMiss(std::size_t index) {
+  float& l = log_odds_.data()[index];
+  l = std::max(l + miss_, min_);
+  std::uint8_t& obstacle = obstacles_.data()[index];
+  if (obstacle != 0 && l <= occupied_) {
+    obstacle = 0;
+    --num_obstacles_;
+    surfaces_.data()[index] = CellSurface{};
+    MarkChanged(index);
+  }
+}
+
+void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                              bool to_is_hit) {
+  const MapLimits& limits = Limits();
+  const auto clipped = ClipSegment(limits, from, to);
+  if (!clipped) {
+    return;
+  }
+  const Eigen::Array2i a = limits.CellIndex(clipped->first);
+  const Eigen::Array2i b = limits.CellIndex(clipped->second);
+  // The end cell of a return is its hit cell; a ray cut at the border passes through its last cell.
+  const bool include_end = !(to_is_hit && limits.Contains(limits.CellIndex(to)));
+  const auto w = static_cast<std::size_t>(limits.Width());
+  TraceLine(a, b, include_end, [&](int i, int j) {
+    const std::size_t index = static_cast<std::size_t>(j) * w + static_cast<std::size_t>(i);
+    if (stamps_[index] != stamp_) {
+      stamps_[index] = stamp_;
+      ApplyMiss(index);
+    }
+  });
+}
+
+void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan) {
+  ++stamp_;
+  if (stamp_ == 0) {  // wrapped around: forget old stamps
+    std::fill(stamps_.begin(), stamps_.end(), 0U);
+    stamp_ = 1;
+  }
+  ++num_scans_;
+  const MapLimits& limits = Limits();
+  const Eigen::Matrix2d R = T_odom_base.Rotation();
+  const Eigen::Vector2d origin = T_odom_base * scan.origin;
+  const double max_range2 = options_.max_range * options_.max_range;
+  const auto memory = static_cast<std::uint16_t>(std::clamp(options_.surface_memory, 1, 60000));
+  // Hits first, so that no ray of the same scan clears a cell this scan hit.
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    if ((scan.points[k] - scan.origin).squaredNorm() > max_range2) {
+      continue;
+    }
+    const Eigen::Vector2d p = T_odom_base * scan.points[k];
+    const Eigen::Array2i cell = limits.CellIndex(p);
+    if (!limits.Contains(cell)) {
+      continue;
+    }
+    const auto index = static_cast<std::size_t>(limits.LinearIndex(cell));
+    if (stamps_[index] != stamp_) {
+      stamps_[index] = stamp_;
+      ApplyHit(index);
+    }
+    CellSurface& s = surfaces_.data()[index];
+    s.hits = std::min<std::uint16_t>(static_cast<std::uint16_t>(s.hits + 1), memory);
+    const float a = 1.0F / static_cast<float>(s.hits);
+    const Eigen::Vector2f local = (p - limits.CellCenter(cell)).cast<float>();
+    s.mean_x += a * (local.x() - s.mean_x);
+    s.mean_y += a * (local.y() - s.mean_y);
+    const Eigen::Vector2f n = (R * scan.normals[k]).cast<float>();
+    const float q = scan.normal_quality[k];
+    s.txx += a * (q * n.x() * n.x() - s.txx);
+    s.txy += a * (q * n.x() * n.y() - s.txy);
+    s.tyy += a * (q * n.y() * n.y() - s.tyy);
+    const float half = 0.5F * (s.txx + s.tyy);
+    const float root = std::sqrt(0.25F * (s.txx - s.tyy) * (s.txx - s.tyy) + s.txy * s.txy);
+    s.planarity = 2.0F * root;
+    Eigen::Vector2f e = std::abs(s.txy) > 1e-9F ? Eigen::Vector2f(half + root - s.tyy, s.txy)
+                                                : (s.txx >= s.tyy ? Eigen::Vector2f(1.0F, 0.0F)
+                                                                  : Eigen::Vector2f(0.0F, 1.0F));
+    e.normalize();
+    s.normal_x = e.x();
+    s.normal_y = e.y();
+  }
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    const Eigen::Vector2d& pb = scan.points[k];
+    const double range2 = (pb - scan.origin).squaredNorm();
+    if (range2 > max_range2) {  // clear only up to max_range, never mark
+      const Eigen::Vector2d dir = (pb - scan.origin) / std::sqrt(range2);
+      TraceFree(origin, origin + R * dir * options_.max_range, false);
+    } else {
+      TraceFree(origin, T_odom_base * pb, true);
+    }
+  }
+  if (options_.clear_no_returns) {
+    for (const Eigen::Vector2d& dir : scan.no_return_directions) {
+      TraceFree(origin, origin + R * dir * options_.no_return_clearing_range, false);
+    }
+  }
+}
+
+void RollingWindow::ClearChanges() {
+  changed_.clear();
+  pending_shift_.setZero();
+  changes_overflow_ = false;
+}
+
+Grid2D<float> RollingWindow::SnapshotInCentreFrame() const {
+  const MapLimits& limits = Limits();
+  Grid2D<float> out(MapLimits(limits.Resolution(), limits.Origin() - Centre(), limits.Width(),
+                              limits.Height()),
+                    kUnknownLogOdds);
+  out.Cells() = log_odds_.Cells();
+  return out;
+}
+
+}  // namespace gridslam

@@ -1,0 +1,101 @@
+// The rolling-window local occupancy map of the front end (DESIGN.md §1.3; paper reconstruction
+// §1.4): a log-odds grid (0.05 m cells, 12-15 m side) axis-aligned with the front end's odometry
+// frame and centred on the robot. When the robot is more than `shift_distance` from the centre
+// along x or y, the window moves by the whole offset along that axis, in whole cells, so world
+// coordinates of the cells that stay are unchanged; cells leaving are forgotten and cells entering
+// start unknown. Scans are inserted with an inverse sensor model (hits at the end cell, misses
+// along the Bresenham ray, each cell updated at most once per scan as in Cartographer's
+// ProbabilityGrid; max-range readings never mark and clear only if enabled, up to a cap).
+// Besides the log-odds, the window keeps for every obstacle cell the running mean of the points
+// that hit it and of their surface normals, which gives the scan matcher sub-cell, point-to-line
+// correspondences; and it tracks which cells changed obstacle status so a distance field over the
+// obstacles can be updated incrementally.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "gridslam/geometry/pose2.hpp"
+#include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/local_map_options.hpp"
+#include "gridslam/grid/scan_points.hpp"
+
+namespace gridslam {
+
+/// What an obstacle cell knows about the surface that hit it.
+struct CellSurface {
+  float mean_x = 0.0F;  ///< Mean hit point relative to the cell centre [m].
+  float mean_y = 0.0F;
+  float txx = 0.0F;  ///< Running mean of quality * n n^T of the hits' normals.
+  float txy = 0.0F;
+  float tyy = 0.0F;
+  float normal_x = 0.0F;   ///< Dominant unit normal (sign arbitrary); 0 if unknown.
+  float normal_y = 0.0F;
+  float planarity = 0.0F;  ///< lambda_max - lambda_min of the tensor, in [0, 1].
+  std::uint16_t hits = 0;  ///< Hits averaged (capped at surface_memory).
+};
+
+class RollingWindow {
+ public:
+  /// An unknown window centred on the cell containing `centre_odom`.
+  RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom);
+
+  [[nodiscard]] const LocalMapOptions& Options() const { return options_; }
+  /// Geometry in the odometry frame; the origin changes only in whole cells.
+  [[nodiscard]] const MapLimits& Limits() const { return log_odds_.Limits(); }
+  /// Metric centre of the centre cell (the key-map frame's origin, DESIGN.md §1.3).
+  [[nodiscard]] Eigen::Vector2d Centre() const;
+  [[nodiscard]] const Grid2D<float>& LogOdds() const { return log_odds_; }
+  /// 1 where the cell is an obstacle (probability > occupied_probability), else 0.
+  [[nodiscard]] const Grid2D<std::uint8_t>& Obstacles() const { return obstacles_; }
+  [[nodiscard]] const Grid2D<CellSurface>& Surfaces() const { return surfaces_; }
+  /// Mean hit point of cell `index` (linear) in the odometry frame [m].
+  [[nodiscard]] Eigen::Vector2d MeanPoint(std::int32_t index) const;
+  [[nodiscard]] long NumObstacles() const { return num_obstacles_; }
+  [[nodiscard]] long NumInsertedScans() const { return num_scans_; }
+
+  /// Shifts the window if `p_odom` is at least shift_distance from the centre along an axis;
+  /// returns the shift (di, dj) in cells: new cell (i, j) is old cell (i + di, j + dj).
+  Eigen::Array2i Recentre(const Eigen::Vector2d& p_odom);
+
+  /// Inserts `scan` (points in the base frame) seen from the robot pose `T_odom_base`.
+  void InsertScan(const Pose2& T_odom_base, const ScanPoints& scan);
+
+  /// Linear indices (current geometry) of cells whose obstacle status changed since the last
+  /// ClearChanges(), and the accumulated shift over that time; `changes_overflow` if too many to
+  /// list (then treat every cell as changed).
+  [[nodiscard]] const std::vector<std::int32_t>& ChangedCells() const { return changed_; }
+  [[nodiscard]] const Eigen::Array2i& PendingShift() const { return pending_shift_; }
+  [[nodiscard]] bool ChangesOverflow() const { return changes_overflow_; }
+  void ClearChanges();
+
+  /// The log-odds grid with MapLimits in the frame centred on Centre() (yaw 0).
+  [[nodiscard]] Grid2D<float> SnapshotInCentreFrame() const;
+
+ private:
+  void ApplyHit(std::size_t index);
+  void ApplyMiss(std::size_t index);
+  void MarkChanged(std::size_t index);
+  void TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to, bool to_is_hit);
+
+  LocalMapOptions options_;
+  float hit_ = 0.0F;
+  float miss_ = 0.0F;
+  float min_ = 0.0F;
+  float max_ = 0.0F;
+  float occupied_ = 0.0F;
+  Grid2D<float> log_odds_;
+  Grid2D<std::uint8_t> obstacles_;
+  Grid2D<CellSurface> surfaces_;
+  std::vector<std::uint32_t> stamps_;  ///< Last scan that updated each cell.
+  std::uint32_t stamp_ = 0;
+  long num_obstacles_ = 0;
+  long num_scans_ = 0;
+  std::vector<std::int32_t> changed_;
+  Eigen::Array2i pending_shift_ = Eigen::Array2i::Zero();
+  bool changes_overflow_ = false;
+};
+
+}  // namespace gridslam

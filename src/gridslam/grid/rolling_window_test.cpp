@@ -1,0 +1,166 @@
+#include "gridslam/grid/rolling_window.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "gridslam/grid/log_odds.hpp"
+
+namespace gridslam {
+namespace {
+
+// A 181-beam scan over 180 degrees of a wall at x = `distance` in front of the laser.
+LaserScan WallScan(double distance, int beams = 181) {
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 2;
+  scan.angle_increment = std::numbers::pi / (beams - 1);
+  scan.range_min = 0.01;
+  scan.range_max = 30.0;
+  for (int k = 0; k < beams; ++k) {
+    const double a = scan.Angle(static_cast<std::size_t>(k));
+    const double c = std::cos(a);
+    scan.ranges.push_back(c > 0.05 ? static_cast<float>(distance / c) : 81.83F);
+  }
+  return scan;
+}
+
+LocalMapOptions SmallWindow() {
+  LocalMapOptions options;
+  options.size = 8.0;
+  return options;
+}
+
+TEST(LocalMapOptions, WindowHasAnOddNumberOfCells) {
+  LocalMapOptions options;
+  EXPECT_EQ(options.NumCells(), 301);
+  options.size = 12.0;
+  EXPECT_EQ(options.NumCells(), 241);
+  EXPECT_TRUE(options.Validate().ok());
+  options.miss_probability = 0.6;
+  EXPECT_FALSE(options.Validate().ok());
+}
+
+TEST(RollingWindow, StartsUnknownAndCentredOnTheRobot) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d(1.02, -3.01));
+  EXPECT_EQ(window.Limits().Width(), 161);
+  EXPECT_TRUE(window.Limits().Contains(window.Limits().CellIndex({1.02, -3.01})));
+  EXPECT_TRUE((window.Limits().CellIndex(window.Centre()) ==
+               window.Limits().CellIndex({1.02, -3.01}))
+                  .all());
+  EXPECT_EQ(window.NumObstacles(), 0);
+  for (const float l : window.LogOdds().Cells()) {
+    ASSERT_EQ(l, kUnknownLogOdds);
+  }
+}
+
+TEST(RollingWindow, InsertMarksTheWallAndClearsInFrontOfIt) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d::Zero());
+  const ScanPoints points = ExtractScanPoints(WallScan(2.0), Pose2(), 30.0);
+  window.InsertScan(Pose2(), points);
+  const MapLimits& limits = window.Limits();
+  const Eigen::Array2i wall = limits.CellIndex({2.0 + 0.01, 0.3});
+  const Eigen::Array2i free = limits.CellIndex({1.0, 0.3});
+  const Eigen::Array2i behind = limits.CellIndex({2.5, 0.3});
+  EXPECT_EQ(window.Obstacles().at(wall), 1);
+  EXPECT_GT(window.LogOdds().at(wall), 0.0F);
+  EXPECT_LT(window.LogOdds().at(free), 0.0F);
+  EXPECT_EQ(window.LogOdds().at(behind), kUnknownLogOdds);
+  EXPECT_GT(window.NumObstacles(), 20);
+  EXPECT_FALSE(window.ChangedCells().empty());
+  // The mean hit point of a wall cell lies on the wall, and its normal is along x.
+  const auto index = static_cast<std::int32_t>(limits.LinearIndex(wall));
+  EXPECT_NEAR(window.MeanPoint(index).x(), 2.0, 1e-3);
+  const CellSurface& s = window.Surfaces().at(wall);
+  EXPECT_NEAR(std::abs(s.normal_x), 1.0, 1e-3);
+  EXPECT_GT(s.planarity, 0.9F);
+}
+
+TEST(RollingWindow, NoReturnsNaNAndEmptyScansNeverMarkObstacles) {
+  for (const bool clear : {false, true}) {
+    LocalMapOptions options = SmallWindow();
+    options.clear_no_returns = clear;
+    options.no_return_clearing_range = 2.0;
+    RollingWindow window(options, Eigen::Vector2d::Zero());
+    LaserScan scan = WallScan(2.0, 361);
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      const float values[] = {81.83F, 81.91F, 80.0F, std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(), -1.0F, 0.0F};
+      scan.ranges[k] = values[k % 7];
+    }
+    window.InsertScan(Pose2(0.1, 0.2, 0.3), ExtractScanPoints(scan, Pose2(), 30.0));
+    window.InsertScan(Pose2(), ExtractScanPoints(LaserScan{}, Pose2(), 30.0));
+    EXPECT_EQ(window.NumObstacles(), 0);
+    bool any_cleared = false;
+    for (const float l : window.LogOdds().Cells()) {
+      ASSERT_LE(l, 0.0F);
+      any_cleared = any_cleared || l < 0.0F;
+    }
+    EXPECT_EQ(any_cleared, clear);
+    // Clearing stops at the cap.
+    const Eigen::Array2i far = window.Limits().CellIndex({3.0, 0.0});
+    EXPECT_EQ(window.LogOdds().at(far), kUnknownLogOdds);
+  }
+}
+
+TEST(RollingWindow, ShiftKeepsWorldCoordinatesAndForgetsLeavingCells) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d::Zero());
+  window.InsertScan(Pose2(), ExtractScanPoints(WallScan(2.02), Pose2(), 30.0));
+  window.ClearChanges();
+  const Eigen::Vector2d wall_point(2.02, 0.5);
+  const float before = window.LogOdds().at(window.Limits().CellIndex(wall_point));
+  const Eigen::Vector2d free_point(1.0, -0.5);
+  const float free_before = window.LogOdds().at(window.Limits().CellIndex(free_point));
+  const long obstacles = window.NumObstacles();
+
+  EXPECT_TRUE((window.Recentre({0.5, 0.3}) == 0).all());  // under shift_distance
+  const int expected_shift = window.Limits().CellIndex({1.3, -0.2}).x() - 80;
+  const Eigen::Array2i shift = window.Recentre({1.3, -0.2});
+  EXPECT_EQ(shift.x(), expected_shift);
+  EXPECT_EQ(shift.y(), 0);
+  EXPECT_TRUE((window.PendingShift() == shift).all());
+  EXPECT_TRUE((window.Limits().CellIndex(window.Centre()) == window.Limits().CellIndex({1.3, 0.0}))
+                  .all());
+  EXPECT_EQ(window.LogOdds().at(window.Limits().CellIndex(wall_point)), before);
+  EXPECT_EQ(window.LogOdds().at(window.Limits().CellIndex(free_point)), free_before);
+  EXPECT_EQ(window.NumObstacles(), obstacles);  // the wall is still inside
+  const auto index = static_cast<std::int32_t>(
+      window.Limits().LinearIndex(window.Limits().CellIndex(wall_point)));
+  EXPECT_NEAR(window.MeanPoint(index).x(), 2.02, 1e-3);
+
+  // Move far enough for the wall to leave: its cells are forgotten; entering cells are unknown.
+  window.Recentre({8.0, 0.0});
+  EXPECT_EQ(window.NumObstacles(), 0);
+  for (const float l : window.LogOdds().Cells()) {
+    ASSERT_EQ(l, kUnknownLogOdds);
+  }
+}
+
+TEST(RollingWindow, SnapshotIsExpressedInTheCentreFrame) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d(10.0, 5.0));
+  window.InsertScan(Pose2(10.0, 5.0, 0.0), ExtractScanPoints(WallScan(2.0), Pose2(), 30.0));
+  const Grid2D<float> snapshot = window.SnapshotInCentreFrame();
+  const Eigen::Vector2d centre = window.Centre();
+  const Eigen::Vector2d p_odom(12.01, 5.4);
+  EXPECT_EQ(snapshot.at(snapshot.Limits().CellIndex(p_odom - centre)),
+            window.LogOdds().at(window.Limits().CellIndex(p_odom)));
+  EXPECT_NEAR(snapshot.Limits().Origin().x(), -0.5 * 161 * 0.05, 1e-9);
+}
+
+TEST(RollingWindow, MissesCanTurnAnObstacleBackToFree) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d::Zero());
+  window.InsertScan(Pose2(), ExtractScanPoints(WallScan(1.0), Pose2(), 30.0));
+  const Eigen::Array2i cell = window.Limits().CellIndex({1.01, 0.0});
+  ASSERT_EQ(window.Obstacles().at(cell), 1);
+  window.ClearChanges();
+  for (int k = 0; k < 5; ++k) {  // the obstacle moved away
+    window.InsertScan(Pose2(), ExtractScanPoints(WallScan(3.0), Pose2(), 30.0));
+  }
+  EXPECT_EQ(window.Obstacles().at(cell), 0);
+  EXPECT_FALSE(window.ChangedCells().empty());
+  EXPECT_EQ(window.Surfaces().at(cell).hits, 0);
+}
+
+}  // namespace
+}  // namespace gridslam

@@ -1,0 +1,186 @@
+#include "gridslam/matching/descriptor_matcher.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "gridslam/common/check.hpp"
+
+namespace gridslam::matching {
+namespace {
+
+using RowMajorMatrixXf = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kMaxK = 17;  // cross_check_k <= 16, plus one for the ratio test
+
+// Squared Euclidean distances of float descriptors: |a|² + |b|² - 2 a·b, one GEMM.
+RowMajorMatrixXf SquaredEuclidean(const cv::Mat& a, const cv::Mat& b) {
+  const cv::Mat ac = a.isContinuous() ? a : a.clone();
+  const cv::Mat bc = b.isContinuous() ? b : b.clone();
+  const Eigen::Map<const RowMajorMatrixXf> ma(ac.ptr<float>(), ac.rows, ac.cols);
+  const Eigen::Map<const RowMajorMatrixXf> mb(bc.ptr<float>(), bc.rows, bc.cols);
+  RowMajorMatrixXf d = -2.0F * (ma * mb.transpose());
+  const Eigen::VectorXf na = ma.rowwise().squaredNorm();
+  const Eigen::RowVectorXf nb = mb.rowwise().squaredNorm().transpose();
+  d.colwise() += na;
+  d.rowwise() += nb;
+  return d.cwiseMax(0.0F);
+}
+
+// Hamming distances of binary descriptors, 8 bytes at a time.
+RowMajorMatrixXf Hamming(const cv::Mat& a, const cv::Mat& b) {
+  const int bytes = a.cols;
+  const int words = bytes / 8;
+  RowMajorMatrixXf d(a.rows, b.rows);
+  for (int i = 0; i < a.rows; ++i) {
+    const std::uint8_t* pa = a.ptr<std::uint8_t>(i);
+    for (int j = 0; j < b.rows; ++j) {
+      const std::uint8_t* pb = b.ptr<std::uint8_t>(j);
+      int bits = 0;
+      for (int w = 0; w < words; ++w) {
+        std::uint64_t x = 0;
+        std::uint64_t y = 0;
+        std::memcpy(&x, pa + 8 * w, 8);
+        std::memcpy(&y, pb + 8 * w, 8);
+        bits += std::popcount(x ^ y);
+      }
+      for (int c = 8 * words; c < bytes; ++c) {
+        bits += std::popcount(static_cast<unsigned>(pa[c] ^ pb[c]));
+      }
+      d(i, j) = static_cast<float>(bits);
+    }
+  }
+  return d;
+}
+
+// The `k` smallest entries (indices, ascending distance, ties to the lower index) of a row or
+// column; missing entries are -1.
+struct TopK {
+  std::array<int, kMaxK> index{};
+  std::array<float, kMaxK> value{};
+  void Reset(int k) {
+    std::fill_n(index.begin(), k, -1);
+    std::fill_n(value.begin(), k, kInf);
+  }
+  void Offer(int k, int idx, float v) {
+    if (!(v < value[static_cast<std::size_t>(k - 1)])) {
+      return;
+    }
+    int pos = k - 1;
+    while (pos > 0 && v < value[static_cast<std::size_t>(pos - 1)]) {
+      value[static_cast<std::size_t>(pos)] = value[static_cast<std::size_t>(pos - 1)];
+      index[static_cast<std::size_t>(pos)] = index[static_cast<std::size_t>(pos - 1)];
+      --pos;
+    }
+    value[static_cast<std::size_t>(pos)] = v;
+    index[static_cast<std::size_t>(pos)] = idx;
+  }
+  // Smallest value among the entries other than `idx`.
+  [[nodiscard]] float BestExcluding(int idx) const { return index[0] == idx ? value[1] : value[0]; }
+  [[nodiscard]] bool Contains(int k, int idx) const {
+    return std::find(index.begin(), index.begin() + k, idx) != index.begin() + k;
+  }
+};
+
+}  // namespace
+
+std::vector<Match> MatchDescriptors(const FeatureSet& a, const FeatureSet& b,
+                                    const DescriptorMatchOptions& options) {
+  GRIDSLAM_CHECK(FeatureSetError(a).empty()) << "feature set a: " << FeatureSetError(a);
+  GRIDSLAM_CHECK(FeatureSetError(b).empty()) << "feature set b: " << FeatureSetError(b);
+  if (a.empty() || b.empty()) {
+    return {};
+  }
+  GRIDSLAM_CHECK(a.descriptors.type() == b.descriptors.type() &&
+                 a.descriptors.cols == b.descriptors.cols)
+      << "descriptor types or lengths differ";
+  const bool binary = a.descriptors.depth() == CV_8U;
+  RowMajorMatrixXf d = binary ? Hamming(a.descriptors, b.descriptors)
+                              : SquaredEuclidean(a.descriptors, b.descriptors);
+  const int na = a.size();
+  const int nb = b.size();
+
+  // Gates: pairs that cannot match get an infinite distance, before any nearest-neighbour search.
+  const bool gate_sign =
+      options.use_laplacian_sign && !a.laplacian_sign.empty() && !b.laplacian_sign.empty();
+  const bool gate_scale = options.max_scale_ratio > 0.0 && !a.scales.empty() && !b.scales.empty();
+  if (gate_sign || gate_scale) {
+    for (int i = 0; i < na; ++i) {
+      for (int j = 0; j < nb; ++j) {
+        const auto ui = static_cast<std::size_t>(i);
+        const auto uj = static_cast<std::size_t>(j);
+        if (gate_sign && (a.laplacian_sign[ui] > 0) != (b.laplacian_sign[uj] > 0)) {
+          d(i, j) = kInf;
+        } else if (gate_scale && (a.scales[ui] > options.max_scale_ratio * b.scales[uj] ||
+                                  b.scales[uj] > options.max_scale_ratio * a.scales[ui])) {
+          d(i, j) = kInf;
+        }
+      }
+    }
+  }
+
+  const int k = std::max(options.cross_check_k, 1);
+  const int keep = std::min(k + 1, kMaxK);  // one more for the ratio test
+  std::vector<TopK> rows(static_cast<std::size_t>(na));
+  std::vector<TopK> cols(static_cast<std::size_t>(nb));
+  for (auto& c : cols) {
+    c.Reset(keep);
+  }
+  for (int i = 0; i < na; ++i) {
+    TopK& row = rows[static_cast<std::size_t>(i)];
+    row.Reset(keep);
+    for (int j = 0; j < nb; ++j) {
+      const float v = d(i, j);
+      row.Offer(keep, j, v);
+      cols[static_cast<std::size_t>(j)].Offer(keep, i, v);
+    }
+  }
+
+  // Squared Euclidean distances compare with the squared thresholds.
+  const double ratio = binary ? options.max_ratio : options.max_ratio * options.max_ratio;
+  const double max_distance =
+      binary ? options.max_descriptor_distance
+             : options.max_descriptor_distance * options.max_descriptor_distance;
+  std::vector<Match> matches;
+  for (int i = 0; i < na; ++i) {
+    const TopK& row = rows[static_cast<std::size_t>(i)];
+    int chosen = -1;
+    const int candidates = options.cross_check_k == 0 ? 1 : k;
+    for (int r = 0; r < candidates && chosen < 0; ++r) {
+      const int j = row.index[static_cast<std::size_t>(r)];
+      if (j < 0 || row.value[static_cast<std::size_t>(r)] == kInf) {
+        break;
+      }
+      if (options.cross_check_k == 0 || cols[static_cast<std::size_t>(j)].Contains(k, i)) {
+        chosen = j;
+      }
+    }
+    if (chosen < 0) {
+      continue;
+    }
+    const double dist = d(i, chosen);
+    if (options.max_ratio < 1.0) {
+      if (!(dist < ratio * row.BestExcluding(chosen))) {
+        continue;
+      }
+      if (options.cross_check_k > 0 &&
+          !(dist < ratio * cols[static_cast<std::size_t>(chosen)].BestExcluding(i))) {
+        continue;
+      }
+    }
+    if (options.max_descriptor_distance > 0.0 && dist > max_distance) {
+      continue;
+    }
+    matches.push_back(
+        {i, chosen, binary ? static_cast<float>(dist) : static_cast<float>(std::sqrt(dist))});
+  }
+  return matches;
+}
+
+}  // namespace gridslam::matching

@@ -1,0 +1,384 @@
+#include "gridslam/pose_graph/gauss_newton.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
+#include <cstdlib>
+#include <Eigen/SparseCore>
+
+#include "gridslam/common/check.hpp"
+#include "gridslam/pose_graph/edge_error.hpp"
+
+namespace gridslam::pose_graph {
+
+namespace internal {
+
+namespace {
+
+std::size_t U(int i) { return static_cast<std::size_t>(i); }
+
+/// Robust kernel rho(s) of the squared error s = e^T Omega e and its derivative (g2o's
+/// RobustKernelHuber / RobustKernelCauchy with delta = width).
+struct Kernel {
+  int kind = 0;  // 0 none, 1 Huber, 2 Cauchy.
+  double delta2 = 1.0;
+
+  void Evaluate(double s, double* rho, double* weight) const {
+    if (kind == 1 && s > delta2) {
+      const double root = std::sqrt(s);
+      const double delta = std::sqrt(delta2);
+      *rho = 2.0 * delta * root - delta2;
+      *weight = delta / root;
+    } else if (kind == 2) {
+      *rho = delta2 * std::log1p(s / delta2);
+      *weight = 1.0 / (1.0 + s / delta2);
+    } else {
+      *rho = s;
+      *weight = 1.0;
+    }
+  }
+};
+
+}  // namespace
+
+class NormalEquations {
+ public:
+  NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed);
+
+  /// Cost (robust) and plain chi^2 at poses x.
+  void Evaluate(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel, double* cost,
+                double* chi2) const;
+  /// Fills H and b at poses x.
+  void Linearize(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel);
+  /// Factorizes H + lambda I; false on a numerical failure.
+  bool Factorize(double lambda);
+  /// dx = -(H + lambda I)^-1 b for the last factorization.
+  Eigen::VectorXd Solve() { if (use_cholmod_) { return cholmod_.solve(-b_); } return ldlt_.solve(-b_); }
+  [[nodiscard]] double MaxDiagonal() const;
+  [[nodiscard]] const Eigen::VectorXd& gradient() const { return b_; }
+  /// x_new = x + step * dx on the free vertices.
+  void Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::VectorXd& dx, double step,
+             std::vector<Eigen::Vector3d>& x_new) const;
+  /// dx^T H dx (H without damping).
+  [[nodiscard]] double Quadratic(const Eigen::VectorXd& dx) const;
+
+ private:
+  struct EdgeSlots {
+    int i = 0;  ///< Vertex indices.
+    int j = 0;
+    int bi = -1;  ///< Variable blocks (-1: fixed).
+    int bj = -1;
+    std::array<int, 9> ii{};  ///< Value index of H_ii(r, c), -1 above the diagonal.
+    std::array<int, 9> jj{};
+    std::array<int, 9> ij{};  ///< Value index of H_ij(r, c) wherever the lower triangle has it.
+    Eigen::Vector3d z;
+    Eigen::Matrix3d information;
+  };
+
+  int ValueIndex(int row, int col) const;
+
+  std::vector<int> block_;  ///< Per vertex index: variable block or -1.
+  std::vector<EdgeSlots> edges_;
+  Eigen::SparseMatrix<double> h_;
+  Eigen::SparseMatrix<double> damped_;
+  std::vector<int> diagonal_;
+  Eigen::VectorXd b_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+  bool use_cholmod_ = std::getenv("GN_CHOLMOD") != nullptr;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholmod_;
+};
+
+NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed) {
+  const int n = static_cast<int>(graph.num_vertices());
+  GRIDSLAM_CHECK(fixed.size() == U(n)) << "fixed flags must cover every vertex";
+  block_.assign(U(n), -1);
+  int blocks = 0;
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[U(v)]) {
+      block_[U(v)] = blocks++;
+    }
+  }
+  const int dim = 3 * blocks;
+  std::vector<Eigen::Triplet<double>> pattern;
+  pattern.reserve(U(6 * blocks) + 9 * graph.num_edges());
+  for (int b = 0; b < blocks; ++b) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c <= r; ++c) {
+        pattern.emplace_back(3 * b + r, 3 * b + c, 0.0);
+      }
+    }
+  }
+  for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+    const int bi = block_[U(graph.FromIndex(k))];
+    const int bj = block_[U(graph.ToIndex(k))];
+    if (bi >= 0 && bj >= 0 && bi != bj) {
+      const int row = std::max(bi, bj);
+      const int col = std::min(bi, bj);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+          pattern.emplace_back(3 * row + r, 3 * col + c, 0.0);
+        }
+      }
+    }
+  }
+  h_.resize(dim, dim);
+  h_.setFromTriplets(pattern.begin(), pattern.end());  // Duplicates collapse to one entry.
+  h_.makeCompressed();
+  b_ = Eigen::VectorXd::Zero(dim);
+  diagonal_.resize(U(dim));
+  for (int d = 0; d < dim; ++d) {
+    diagonal_[U(d)] = ValueIndex(d, d);
+  }
+  for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+    EdgeSlots s;
+    s.i = graph.FromIndex(k);
+    s.j = graph.ToIndex(k);
+    s.bi = block_[U(s.i)];
+    s.bj = block_[U(s.j)];
+    s.z = graph.edge(k).T_i_j.ToVector();
+    s.information = graph.edge(k).information;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        const auto slot = U(3 * r + c);
+        s.ii[slot] = s.bi >= 0 && r >= c ? ValueIndex(3 * s.bi + r, 3 * s.bi + c) : -1;
+        s.jj[slot] = s.bj >= 0 && r >= c ? ValueIndex(3 * s.bj + r, 3 * s.bj + c) : -1;
+        if (s.bi < 0 || s.bj < 0) {
+          s.ij[slot] = -1;
+        } else if (s.bi > s.bj) {
+          s.ij[slot] = ValueIndex(3 * s.bi + r, 3 * s.bj + c);
+        } else if (s.bi < s.bj) {
+          s.ij[slot] = ValueIndex(3 * s.bj + c, 3 * s.bi + r);
+        } else {
+          s.ij[slot] = -1;
+        }
+      }
+    }
+    edges_.push_back(s);
+  }
+  damped_ = h_;
+  if (use_cholmod_) { cholmod_.analyzePattern(damped_); } else {
+  ldlt_.analyzePattern(damped_);  // AMD ordering, computed once.
+  }
+}
+
+int NormalEquations::ValueIndex(int row, int col) const {
+  const int* inner = h_.innerIndexPtr();
+  const int begin = h_.outerIndexPtr()[col];
+  const int end = h_.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(inner + begin, inner + end, row);
+  GRIDSLAM_CHECK(it != inner + end && *it == row) << "entry not in the pattern";
+  return static_cast<int>(it - inner);
+}
+
+void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel,
+                               double* cost, double* chi2) const {
+  double total_cost = 0.0;
+  double total_chi2 = 0.0;
+  for (const EdgeSlots& s : edges_) {
+    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z);
+    const double s2 = e.dot(s.information * e);
+    double rho = 0.0;
+    double weight = 0.0;
+    kernel.Evaluate(s2, &rho, &weight);
+    total_cost += rho;
+    total_chi2 += s2;
+  }
+  *cost = total_cost;
+  *chi2 = total_chi2;
+}
+
+void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel) {
+  double* values = h_.valuePtr();
+  std::fill(values, values + h_.nonZeros(), 0.0);
+  b_.setZero();
+  Eigen::Matrix3d J_i;
+  Eigen::Matrix3d J_j;
+  for (const EdgeSlots& s : edges_) {
+    if (s.bi < 0 && s.bj < 0) {
+      continue;
+    }
+    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, &J_i, &J_j);
+    double rho = 0.0;
+    double weight = 1.0;
+    if (kernel.kind != 0) {
+      kernel.Evaluate(e.dot(s.information * e), &rho, &weight);
+    }
+    const Eigen::Matrix3d omega = weight * s.information;
+    const Eigen::Matrix3d A = J_i.transpose() * omega;
+    const Eigen::Matrix3d B = J_j.transpose() * omega;
+    if (s.bi >= 0) {
+      const Eigen::Matrix3d H_ii = A * J_i;
+      b_.segment<3>(3 * s.bi) += A * e;
+      for (int k = 0; k < 9; ++k) {
+        if (s.ii[U(k)] >= 0) {
+          values[s.ii[U(k)]] += H_ii(k / 3, k % 3);
+        }
+      }
+    }
+    if (s.bj >= 0) {
+      const Eigen::Matrix3d H_jj = B * J_j;
+      b_.segment<3>(3 * s.bj) += B * e;
+      for (int k = 0; k < 9; ++k) {
+        if (s.jj[U(k)] >= 0) {
+          values[s.jj[U(k)]] += H_jj(k / 3, k % 3);
+        }
+      }
+    }
+    if (s.bi >= 0 && s.bj >= 0) {
+      const Eigen::Matrix3d H_ij = A * J_j;
+      if (s.bi == s.bj) {
+        continue;  // Cannot happen: no self-loops.
+      }
+      for (int k = 0; k < 9; ++k) {
+        values[s.ij[U(k)]] += H_ij(k / 3, k % 3);
+      }
+    }
+  }
+}
+
+bool NormalEquations::Factorize(double lambda) {
+  std::copy(h_.valuePtr(), h_.valuePtr() + h_.nonZeros(), damped_.valuePtr());
+  if (lambda > 0.0) {
+    for (const int d : diagonal_) {
+      damped_.valuePtr()[d] += lambda;
+    }
+  }
+  if (use_cholmod_) { cholmod_.factorize(damped_); return cholmod_.info() == Eigen::Success; }
+  ldlt_.factorize(damped_);
+  return ldlt_.info() == Eigen::Success;
+}
+
+double NormalEquations::MaxDiagonal() const {
+  double best = 0.0;
+  for (const int d : diagonal_) {
+    best = std::max(best, h_.valuePtr()[d]);
+  }
+  return best;
+}
+
+void NormalEquations::Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::VectorXd& dx,
+                            double step, std::vector<Eigen::Vector3d>& x_new) const {
+  x_new = x;
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if (block_[v] >= 0) {
+      x_new[v] += step * dx.segment<3>(3 * block_[v]);
+    }
+  }
+}
+
+double NormalEquations::Quadratic(const Eigen::VectorXd& dx) const {
+  return dx.dot(h_.selfadjointView<Eigen::Lower>() * dx);
+}
+
+}  // namespace internal
+
+GaussNewtonSolver::GaussNewtonSolver(const PoseGraph& graph, const std::vector<bool>& fixed,
+                                     GaussNewtonOptions options)
+    : options_(std::move(options)),
+      system_(std::make_unique<internal::NormalEquations>(graph, fixed)) {
+  GRIDSLAM_CHECK(options_.Validate().ok()) << options_.Validate().error().ToString();
+}
+
+GaussNewtonSolver::~GaussNewtonSolver() = default;
+
+LeastSquaresSummary GaussNewtonSolver::Run(PoseGraph& graph, bool levenberg, int max_iterations,
+                                           const Callback& callback) {
+  internal::Kernel kernel;
+  kernel.kind = options_.robust_kernel == "huber" ? 1 : options_.robust_kernel == "cauchy" ? 2 : 0;
+  kernel.delta2 = options_.robust_width * options_.robust_width;
+  const int limit = max_iterations > 0 ? max_iterations : options_.max_iterations;
+
+  std::vector<Eigen::Vector3d> x(graph.num_vertices());
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    x[v] = graph.vertex(static_cast<int>(v)).T_map_v.ToVector();
+  }
+  std::vector<Eigen::Vector3d> x_new;
+  double cost = 0.0;
+  double chi2 = 0.0;
+  system_->Evaluate(x, kernel, &cost, &chi2);
+  LeastSquaresSummary summary;
+  summary.chi2_initial = chi2;
+
+  double lambda = 0.0;
+  double nu = 2.0;
+  bool linearized = false;
+  while (summary.iterations < limit && cost > 0.0) {
+    if (!linearized) {
+      system_->Linearize(x, kernel);
+      linearized = true;
+      if (levenberg && lambda == 0.0) {
+        lambda = options_.lm_initial_lambda_factor * std::max(system_->MaxDiagonal(), 1e-12);
+      }
+    }
+    ++summary.iterations;
+    if (!system_->Factorize(levenberg ? lambda : 0.0)) {
+      if (levenberg) {
+        lambda *= nu;
+        nu *= 2.0;
+        continue;
+      }
+      summary.numerical_failure = true;
+      break;
+    }
+    const Eigen::VectorXd dx = system_->Solve();
+    double new_cost = 0.0;
+    double new_chi2 = 0.0;
+    bool accepted = false;
+    if (levenberg) {
+      system_->Apply(x, dx, 1.0, x_new);
+      system_->Evaluate(x_new, kernel, &new_cost, &new_chi2);
+      // Gain ratio of the actual to the predicted decrease of the cost (Madsen-Nielsen).
+      const double predicted = -2.0 * dx.dot(system_->gradient()) - system_->Quadratic(dx);
+      const double rho = predicted > 0.0 ? (cost - new_cost) / predicted : -1.0;
+      if (rho > 0.0 && new_cost <= cost) {
+        accepted = true;
+        lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+        nu = 2.0;
+      } else {
+        lambda *= nu;
+        nu *= 2.0;
+      }
+    } else {
+      double step = 1.0;
+      for (int h = 0; h <= options_.max_step_halvings; ++h, step *= 0.5) {
+        system_->Apply(x, dx, step, x_new);
+        system_->Evaluate(x_new, kernel, &new_cost, &new_chi2);
+        if (new_cost <= cost) {
+          accepted = true;
+          break;
+        }
+      }
+    }
+    if (callback) {
+      callback(LeastSquaresIteration{summary.iterations, accepted ? new_chi2 : chi2,
+                                     accepted ? new_cost : cost, levenberg ? lambda : 0.0,
+                                     accepted});
+    }
+    if (!accepted) {
+      if (levenberg && lambda < 1e32) {
+        continue;
+      }
+      summary.converged = true;  // No step lowers the cost: a (local) minimum.
+      break;
+    }
+    const double decrease = (cost - new_cost) / std::max(cost, 1e-300);
+    std::swap(x, x_new);
+    cost = new_cost;
+    chi2 = new_chi2;
+    linearized = false;
+    if (decrease < options_.relative_tolerance) {
+      summary.converged = true;
+      break;
+    }
+  }
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    graph.SetPose(static_cast<int>(v), Pose2::FromVector(x[v]));
+  }
+  summary.chi2_final = chi2;
+  return summary;
+}
+
+}  // namespace gridslam::pose_graph

@@ -1,0 +1,77 @@
+// One entry point for the back end (DESIGN.md §1.7, §3.3): Optimize(graph, options) runs SGD
+// (sgd_optimizer.hpp), sparse Gauss-Newton or Levenberg-Marquardt (gauss_newton.hpp), or SGD to
+// get into the basin of the optimum followed by Gauss-Newton to converge ("sgd+gn", the default),
+// on a graph in place, and returns an OptimizationReport with chi^2 before/after, iteration
+// counts and the optimization time. Every component is anchored first (graph_utils.hpp).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gridslam/common/options.hpp"
+#include "gridslam/pose_graph/gauss_newton.hpp"
+#include "gridslam/pose_graph/pose_graph.hpp"
+#include "gridslam/pose_graph/sgd_options.hpp"
+
+namespace gridslam::pose_graph {
+
+struct OptimizerOptions {
+  /// "sgd", "gn" (Gauss-Newton), "lm" (Levenberg-Marquardt) or "sgd+gn".
+  std::string method = "sgd+gn";
+  /// SGD iterations of method "sgd".
+  int sgd_iterations = 100;
+  /// SGD iterations before the Gauss-Newton polish of "sgd+gn".
+  int warmup_iterations = 10;
+  SgdOptions sgd;
+  GaussNewtonOptions gn;
+
+  template <class V>
+  void Visit(V& v) {
+    v("method", method, "Optimizer: sgd, gn, lm or sgd+gn (SGD, then Gauss-Newton)");
+    v("sgd_iterations", sgd_iterations, "Iterations of SGD alone (method sgd)");
+    v("warmup_iterations", warmup_iterations, "SGD iterations before Gauss-Newton in sgd+gn");
+    v.Section("sgd", sgd, "Tree-parameterized SGD (Olson 2006, TORO 2007, Grisetti 2009)");
+    v.Section("gn", gn, "Sparse Gauss-Newton / Levenberg-Marquardt");
+  }
+  [[nodiscard]] Status Validate() const {
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(method == "sgd" || method == "gn" || method == "lm" || method == "sgd+gn",
+                "optimizer.method is sgd, gn, lm or sgd+gn"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(sgd_iterations >= 0, "optimizer.sgd_iterations >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(warmup_iterations >= 0, "optimizer.warmup_iterations >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(sgd.Validate());
+    return gn.Validate();
+  }
+};
+
+/// One iteration of any stage, for --verbose and reports.
+struct IterationRecord {
+  std::string stage;  ///< "sgd", "gn" or "lm".
+  int iteration = 0;  ///< 1-based within the stage.
+  double chi2 = 0.0;  ///< g2o chi^2 after the iteration.
+  double seconds = 0.0;  ///< Time since the start of Optimize().
+};
+
+struct OptimizationReport {
+  std::string method;
+  double chi2_initial = 0.0;
+  double chi2_final = 0.0;
+  int iterations = 0;      ///< All iterations (SGD + least squares).
+  int sgd_iterations = 0;
+  int ls_iterations = 0;   ///< Gauss-Newton / LM iterations.
+  bool converged = false;  ///< The least-squares stage met its tolerance (false for sgd).
+  double seconds = 0.0;    ///< Optimization time (no file I/O).
+  int components = 0;      ///< Connected components (each anchored once).
+};
+
+using IterationCallback = std::function<void(const IterationRecord&)>;
+
+/// Optimizes `graph`'s poses in place. `iterations` > 0 overrides the iteration count of the
+/// method (SGD iterations for sgd, least-squares iterations for gn/lm/the polish of sgd+gn).
+/// With a callback, chi^2 is computed and reported after every iteration (costs time).
+/// Options must be valid (checked).
+OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, int iterations = 0,
+                            const IterationCallback& callback = {});
+
+}  // namespace gridslam::pose_graph

@@ -1,0 +1,127 @@
+// Stochastic gradient descent on a tree parameterization of the pose graph: Olson, Leonard,
+// Teller, ICRA 2006, as refined by Grisetti, Stachniss, Grzonka, Burgard, RSS 2007 (TORO 2-D),
+// with the online learning-rate schedule of Grisetti, Stachniss, Burgard, T-ITS 2009
+// (reconstruction.md §4; the paper's optimizer, §1.5.5).
+//
+// Each connected component gets a spanning tree rooted at its fixed vertices (one anchor per
+// component); all roots hang from one virtual root at the map origin. A vertex's parameter is its
+// pose relative to its parent (§4.2 item 2; see SgdOptions::variant for the two forms). Edges are
+// processed one at a time, ordered by the level of the top node of their tree path (§4.2 item 4).
+// For an edge, the residual r = (p_i (+) Z) - p_j (theta wrapped) weighted by W = R Omega R^T
+// gives the gradient d = 2 W r; the total correction beta = l * alpha * d, with the per-dimension
+// learning rate alpha = 1 / (gamma * t), is clamped to |r| and split over the path nodes in
+// proportion to 1 / M (M = Jacobi preconditioner: the summed information of the edges whose path
+// contains the node), with opposite signs on the two branches (§4.2 item 5). The "relative"
+// variant computes the residual exactly in the frame of the path's top and distributes the
+// rotation first, so a corrected heading swings the whole subtree below a node; this removes
+// TORO's slow propagation of rotations into positions and, with rotation-invariant weights, its
+// dependence on the frame of the information matrix (its x-y correlations).
+//
+// Incremental use (§4.2 item 8, §4.3): AddVertex/AddEdge between Iterate() calls. A new vertex
+// joined by its first edge becomes a leaf of that edge's other end and is initialized from the
+// edge. Every node keeps its own schedule t_n (per-node learning rates, Grisetti 2009): it grows by
+// one per iteration and is not restarted; a new edge that is inconsistent (chi^2 above a
+// threshold) lowers t_n on its path in proportion, so only the affected part speeds up. Joining
+// two components moves the one without a fixed vertex rigidly onto the new edge.
+//
+// Not thread-safe; one optimizer per graph.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "gridslam/pose_graph/pose_graph.hpp"
+#include "gridslam/pose_graph/sgd_options.hpp"
+
+namespace gridslam::pose_graph {
+
+class SgdOptimizer {
+ public:
+  explicit SgdOptimizer(SgdOptions options = {});
+  /// Starts from a copy of `graph` (its poses are the initial guess).
+  SgdOptimizer(const PoseGraph& graph, SgdOptions options);
+
+  /// Adds a vertex with an initial guess. A non-fixed vertex whose first edge joins it to
+  /// another component is re-initialized from that edge.
+  void AddVertex(int id, const Pose2& T_map_v, bool fixed = false);
+  /// Adds an edge between existing vertices (checked), with PoseGraph::AddEdge's contract.
+  void AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information);
+
+  /// Runs `n` iterations (one preconditioner update and one sweep over all edges each).
+  void Iterate(int n = 1);
+
+  /// The graph with the current estimates.
+  [[nodiscard]] const PoseGraph& graph() const;
+  /// g2o chi^2 at the current estimates.
+  [[nodiscard]] double Chi2() const;
+  /// Iterations run so far.
+  [[nodiscard]] int iterations() const { return iterations_; }
+  /// Sum over edges of the number of tree edges on their path (cost of one iteration).
+  [[nodiscard]] long TotalPathLength() const;
+
+ private:
+  struct SgdEdge {
+    int v1 = 0;  ///< Vertex index of the edge's "from" end.
+    int v2 = 0;  ///< Vertex index of the edge's "to" end.
+    Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+    int top = -1;  ///< Lowest common ancestor (-1: the virtual root).
+    int length = 0;
+  };
+
+  // Structure (sgd_optimizer.cpp).
+  void Rebuild();
+  void BuildTree();
+  void FillEdgeInfo(SgdEdge& edge) const;
+  void InsertSorted(int edge_index);
+  void AttachLeaf(int leaf, int parent, const Eigen::Vector3d& T_parent_leaf);
+  void RaiseRates(const SgdEdge& edge);
+  [[nodiscard]] Eigen::Vector3d ParamFromPoses(int v) const;
+  [[nodiscard]] Eigen::Vector3d PoseFromParam(int v) const;
+  void RecomputePoses();
+  void SyncGraph() const;
+  int CollectBranch(int v, int top, std::vector<int>& nodes) const;
+  [[nodiscard]] int Root(int v) const;
+  [[nodiscard]] bool relative() const { return options_.variant == "relative"; }
+
+  // One iteration (sgd_update.cpp).
+  void ComputePreconditioner();
+  double EdgeSchedule(const SgdEdge& edge);
+  void UpdateEdgeGlobal(const SgdEdge& edge);
+  void UpdateEdgeRelative(const SgdEdge& edge);
+  Eigen::Vector3d ComposeBranch(const std::vector<int>& branch, std::vector<double>* parent_theta);
+
+  SgdOptions options_;
+  mutable PoseGraph graph_;
+  mutable bool graph_synced_ = true;
+  int iterations_ = 0;
+  double last_chi2_ = -1.0;
+  bool block_ = false;
+  std::vector<Eigen::Matrix3d> precond_block_;
+
+  // Per vertex index.
+  std::vector<Eigen::Vector3d> pose_;   ///< (x, y, theta) in the map, theta not wrapped.
+  std::vector<Eigen::Vector3d> param_;  ///< Relative to the parent (roots: their pose).
+  std::vector<Eigen::Vector3d> precond_;
+  std::vector<double> age_;  ///< Per-node schedule t_n (learning rate 1 / (gamma t_n)).
+  std::vector<int> parent_;  ///< Parent vertex index, -1 for roots.
+  std::vector<int> level_;
+  std::vector<bool> fixed_;
+  std::vector<bool> attached_;  ///< Has at least one edge.
+  std::vector<int> order_;      ///< Vertices in tree order (parents first).
+
+  std::vector<SgdEdge> edges_;
+  std::vector<int> sorted_;  ///< Edge indices by ascending level of their top.
+  Eigen::Vector3d gamma_ = Eigen::Vector3d::Ones();
+
+  // Scratch space of one edge update.
+  std::vector<int> branch1_;
+  std::vector<int> branch2_;
+  std::vector<double> theta1_;
+  std::vector<double> theta2_;
+  std::vector<Eigen::Vector3d> share_;  ///< Per path node: its weight 1 / (M t) per dimension.
+  Eigen::Vector3d total_share_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace gridslam::pose_graph

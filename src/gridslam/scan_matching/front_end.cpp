@@ -1,0 +1,168 @@
+#include "gridslam/scan_matching/front_end.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <Eigen/LU>
+
+#include "gridslam/common/check.hpp"
+
+namespace gridslam::scan_matching {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+const char* ToString(FrameStatus status) {
+  switch (status) {
+    case FrameStatus::kFirst:
+      return "first";
+    case FrameStatus::kMatched:
+      return "matched";
+    case FrameStatus::kOdometryOnly:
+      return "odometry_only";
+    case FrameStatus::kFallbackFewPoints:
+      return "fallback_few_points";
+    case FrameStatus::kFallbackEmptyMap:
+      return "fallback_empty_map";
+    case FrameStatus::kFallbackRejected:
+      return "fallback_rejected";
+  }
+  return "unknown";
+}
+
+Status FrontEndOptions::Validate() const {
+  GRIDSLAM_RETURN_IF_ERROR(local_map.Validate());
+  GRIDSLAM_RETURN_IF_ERROR(matcher.Validate());
+  GRIDSLAM_RETURN_IF_ERROR(keymap.Validate());
+  GRIDSLAM_RETURN_IF_ERROR(Require(insert_distance >= 0.0 && insert_angle >= 0.0 &&
+                                       insert_period >= 0.0,
+                                   "front_end insert thresholds >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_sigma_xy > 0.0 && odometry_sigma_theta > 0.0,
+                                   "front_end odometry sigmas > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_drift_xy >= 0.0 && odometry_drift_theta >= 0.0,
+                                   "front_end odometry drifts >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_correction_xy > 0.0 && max_correction_theta > 0.0,
+                                   "front_end max corrections > 0"));
+  return Status::Ok();
+}
+
+FrontEnd::FrontEnd(const FrontEndOptions& options)
+    : options_(options),
+      matcher_(options.matcher),
+      field_(options.matcher.max_correspondence_distance),
+      keymaps_(options.keymap) {
+  GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
+}
+
+FrontEnd::~FrontEnd() = default;
+
+Eigen::Matrix3d FrontEnd::PriorInformation(const Pose2& odometry_increment,
+                                           const Pose2& /*T_odom_base_predicted*/) const {
+  const double sigma_xy = options_.odometry_sigma_xy +
+                          options_.odometry_drift_xy * odometry_increment.translation().norm();
+  const double sigma_theta = options_.odometry_sigma_theta +
+                             options_.odometry_drift_theta * std::abs(odometry_increment.theta());
+  return Eigen::Vector3d(1.0 / (sigma_xy * sigma_xy), 1.0 / (sigma_xy * sigma_xy),
+                         1.0 / (sigma_theta * sigma_theta))
+      .asDiagonal();
+}
+
+bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
+  const Pose2 moved = Between(last_insert_pose_, pose);
+  return moved.translation().norm() >= options_.insert_distance ||
+         std::abs(moved.theta()) >= options_.insert_angle ||
+         std::abs(ToSeconds(frame.corrected_time - last_insert_time_)) >= options_.insert_period;
+}
+
+FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
+  FrontEndStep step;
+  step.time = frame.time;
+  ++stats_.frames;
+  auto start = Clock::now();
+  const ScanPoints points =
+      ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range);
+  stats_.seconds_preprocess += SecondsSince(start);
+
+  Pose2 pose = frame.T_odom_base;
+  const bool first = window_ == nullptr;
+  if (first) {
+    window_ = std::make_unique<RollingWindow>(options_.local_map, pose.translation());
+    step.status = FrameStatus::kFirst;
+  } else {
+    const Pose2 increment = Between(last_odometry_, frame.T_odom_base);
+    const Pose2 predicted = last_estimate_ * increment;
+    const Eigen::Matrix3d prior_information = PriorInformation(increment, predicted);
+    pose = predicted;
+    step.covariance = prior_information.inverse();
+    if (!options_.match) {
+      step.status = FrameStatus::kOdometryOnly;
+    } else if (static_cast<int>(points.size()) < options_.matcher.min_points) {
+      step.status = FrameStatus::kFallbackFewPoints;
+      ++stats_.fallback_few_points;
+    } else if (window_->NumObstacles() < options_.matcher.min_correspondences) {
+      step.status = FrameStatus::kFallbackEmptyMap;
+      ++stats_.fallback_empty_map;
+    } else {
+      start = Clock::now();
+      field_.Update(*window_);
+      window_->ClearChanges();
+      stats_.seconds_field += SecondsSince(start);
+      start = Clock::now();
+      step.match = matcher_.Match(*window_, field_, points, predicted, prior_information);
+      stats_.seconds_match += SecondsSince(start);
+      stats_.searches += step.match.searched ? 1 : 0;
+      const Pose2 correction = Between(predicted, step.match.T_odom_base);
+      if (step.match.ok && correction.translation().norm() <= options_.max_correction_xy &&
+          std::abs(correction.theta()) <= options_.max_correction_theta) {
+        pose = step.match.T_odom_base;
+        step.covariance = step.match.covariance;
+        step.status = FrameStatus::kMatched;
+        ++stats_.matched;
+      } else {
+        step.status = FrameStatus::kFallbackRejected;
+        ++stats_.fallback_rejected;
+      }
+    }
+  }
+  step.T_odom_base = pose;
+
+  start = Clock::now();
+  window_->Recentre(pose.translation());
+  if (first || ShouldInsert(frame, pose)) {
+    window_->InsertScan(pose, points);
+    last_insert_pose_ = pose;
+    last_insert_time_ = frame.corrected_time;
+    step.inserted = true;
+    ++stats_.insertions;
+  }
+  stats_.seconds_insert += SecondsSince(start);
+
+  start = Clock::now();
+  keymaps_.AddScan(frame, pose);
+  step.key_map = keymaps_.MaybeSnapshot(*window_);
+  stats_.key_maps += step.key_map ? 1 : 0;
+  stats_.seconds_keymap += SecondsSince(start);
+  stats_.field_rebuilds = field_.NumRebuilds();
+  stats_.field_tile_updates = field_.NumTileUpdates();
+
+  last_odometry_ = frame.T_odom_base;
+  last_estimate_ = pose;
+  return step;
+}
+
+std::optional<keymap::KeyMap> FrontEnd::Finish() {
+  if (window_ == nullptr) {
+    return std::nullopt;
+  }
+  auto key = keymaps_.Finish(*window_);
+  stats_.key_maps += key ? 1 : 0;
+  return key;
+}
+
+}  // namespace gridslam::scan_matching

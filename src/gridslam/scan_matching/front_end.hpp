@@ -1,0 +1,103 @@
+// The front end (DESIGN.md §1.2-1.3; paper reconstruction §1.4): frames go in one at a time; each
+// scan is matched against the rolling local map built from the previous scans (scan_matcher.hpp),
+// starting from the odometry increment applied to the previous estimate; the scan is then
+// inserted at its estimated pose (when the robot moved enough since the last insertion), the
+// window rolls with the robot, and a key map is handed out whenever the window's origin moved
+// more than keymap_distance (or keymap_period passed). Scans with too few returns, an empty map
+// or a rejected match keep the odometry prediction (counted). One code path serves online use
+// (call AddFrame per scan) and batch runs (loop, then Finish()).
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "gridslam/grid/rolling_window.hpp"
+#include "gridslam/keymap/key_map_builder.hpp"
+#include "gridslam/scan/laser_scan.hpp"
+#include "gridslam/scan_matching/front_end_options.hpp"
+#include "gridslam/scan_matching/matching_field.hpp"
+#include "gridslam/scan_matching/scan_matcher.hpp"
+
+namespace gridslam::scan_matching {
+
+/// How a frame's pose was obtained.
+enum class FrameStatus {
+  kFirst,              ///< First frame: the odometry pose defines the front end's frame.
+  kMatched,            ///< Scan matched.
+  kOdometryOnly,       ///< Matching disabled (options.match = false).
+  kFallbackFewPoints,  ///< Too few returns to match: odometry prediction.
+  kFallbackEmptyMap,   ///< The map had too few obstacles: odometry prediction.
+  kFallbackRejected,   ///< The match failed or moved too far: odometry prediction.
+};
+
+const char* ToString(FrameStatus status);
+
+/// What happened to one frame.
+struct FrontEndStep {
+  Time time;                ///< The frame's printed timestamp.
+  Pose2 T_odom_base;        ///< Estimated robot pose in the front end's (odometry) frame.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< Of the match, if matched.
+  FrameStatus status = FrameStatus::kFirst;
+  MatchResult match;        ///< Details of the match (if one was attempted).
+  bool inserted = false;    ///< The scan was inserted into the local map.
+  std::optional<keymap::KeyMap> key_map;  ///< A key map finished after this frame.
+};
+
+/// Counters and time per stage [s] (steady clock).
+struct FrontEndStats {
+  long frames = 0;
+  long matched = 0;
+  long fallback_few_points = 0;
+  long fallback_empty_map = 0;
+  long fallback_rejected = 0;
+  long searches = 0;
+  long insertions = 0;
+  long key_maps = 0;
+  long field_rebuilds = 0;
+  long field_tile_updates = 0;
+  double seconds_preprocess = 0.0;
+  double seconds_field = 0.0;
+  double seconds_match = 0.0;
+  double seconds_insert = 0.0;
+  double seconds_keymap = 0.0;
+};
+
+class FrontEnd {
+ public:
+  /// `options` must be valid (Validate()).
+  explicit FrontEnd(const FrontEndOptions& options);
+  ~FrontEnd();
+  FrontEnd(const FrontEnd&) = delete;
+  FrontEnd& operator=(const FrontEnd&) = delete;
+
+  /// Processes the next frame (frames in the log's order).
+  FrontEndStep AddFrame(const Frame& frame);
+
+  /// The last key map holding the scans not yet in one (nullopt if none); call once at the end.
+  std::optional<keymap::KeyMap> Finish();
+
+  [[nodiscard]] const FrontEndStats& Stats() const { return stats_; }
+  /// The local map (null before the first frame).
+  [[nodiscard]] const RollingWindow* Window() const { return window_.get(); }
+  [[nodiscard]] const FrontEndOptions& Options() const { return options_; }
+
+ private:
+  [[nodiscard]] Eigen::Matrix3d PriorInformation(const Pose2& odometry_increment,
+                                                 const Pose2& T_odom_base_predicted) const;
+  [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
+
+  FrontEndOptions options_;
+  ScanMatcher matcher_;
+  std::unique_ptr<RollingWindow> window_;
+  MatchingField field_;
+  keymap::KeyMapBuilder keymaps_;
+  FrontEndStats stats_;
+  Pose2 last_odometry_;     ///< Odometry pose of the previous frame.
+  Pose2 last_estimate_;     ///< Estimated pose of the previous frame.
+  Pose2 last_insert_pose_;  ///< Pose of the last inserted scan.
+  Time last_insert_time_;
+};
+
+}  // namespace gridslam::scan_matching

@@ -1,0 +1,49 @@
+// Options of the front end (front_end.hpp): its local map, scan matcher, key maps, the motion
+// filter deciding which scans are inserted, and the odometry model of the matcher's prior.
+#pragma once
+
+#include "gridslam/common/options.hpp"
+#include "gridslam/grid/local_map_options.hpp"
+#include "gridslam/keymap/key_map_builder.hpp"
+#include "gridslam/scan_matching/scan_matcher_options.hpp"
+
+namespace gridslam::scan_matching {
+
+struct FrontEndOptions {
+  bool match = true;  ///< false: poses are raw odometry (the baseline), the map is still built.
+  LocalMapOptions local_map;
+  ScanMatcherOptions matcher;
+  keymap::KeyMapOptions keymap;
+  double insert_distance = 0.05;  ///< Insert a scan when the robot moved this far [m] ...
+  double insert_angle = 0.03;     ///< ... or turned this much [rad] ...
+  double insert_period = 5.0;     ///< ... or this much time passed since the last insertion [s].
+  /// Odometry prior of the matcher: standard deviations of the predicted pose, a floor plus a
+  /// part proportional to the motion since the previous scan.
+  double odometry_sigma_xy = 0.05;     ///< [m]
+  double odometry_sigma_theta = 0.05;  ///< [rad]
+  double odometry_drift_xy = 0.2;      ///< [m per m travelled]
+  double odometry_drift_theta = 0.2;   ///< [rad per rad turned]
+  double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
+  double max_correction_theta = 0.35;  ///< [rad]
+
+  template <class V>
+  void Visit(V& v) {
+    v("match", match, "Match scans (false: raw odometry poses, for baselines)");
+    v.Section("local_map", local_map, "Rolling-window local occupancy map (DESIGN 1.3)");
+    v.Section("matcher", matcher, "Scan-to-local-map matcher (DESIGN 1.2)");
+    v.Section("keymap", keymap, "Key-map selection (DESIGN 1.3)");
+    v("insert_distance", insert_distance, "Insert a scan after this much travel [m]");
+    v("insert_angle", insert_angle, "... or this much rotation [rad]");
+    v("insert_period", insert_period, "... or this much time [s]");
+    v("odometry_sigma_xy", odometry_sigma_xy, "Prior: position std of a prediction [m]");
+    v("odometry_sigma_theta", odometry_sigma_theta, "Prior: yaw std of a prediction [rad]");
+    v("odometry_drift_xy", odometry_drift_xy, "Prior: added position std per metre [m/m]");
+    v("odometry_drift_theta", odometry_drift_theta, "Prior: added yaw std per radian [rad/rad]");
+    v("max_correction_xy", max_correction_xy,
+      "Matches moving the prediction farther are rejected (odometry fallback) [m]");
+    v("max_correction_theta", max_correction_theta, "... or turning it more [rad]");
+  }
+  [[nodiscard]] Status Validate() const;
+};
+
+}  // namespace gridslam::scan_matching

@@ -1,0 +1,66 @@
+// Scan-to-local-map matcher of the front end (DESIGN.md §1.2). The paper uses Censi's PL-ICP
+// (paper reconstruction §6) against a key-frame scan; here each scan is matched against the
+// rolling local map built from the previous scans, by Gauss-Newton on point-to-line residuals
+// whose correspondences come, in O(1), from the exact distance transform of the map's obstacle
+// cells (the nearest obstacle cell of the cell a point falls in: its mean hit point and surface
+// normal; matching_field.hpp). A "distance_field" residual (bilinear distance to the nearest
+// obstacle) is available for comparison. The iterations are robust (Cauchy weights, shrinking
+// scale over stages, i.e. coarse to fine), start from the odometry prediction and keep a weak
+// motion-model prior, which matters only where the scan leaves a direction unconstrained (long
+// corridors). When the refined prior explains the scan poorly, a correlative search (Olson 2009,
+// brute force over a coarse x-y-yaw lattice on a Gaussian score of the distance field) proposes
+// another start, and the better of the two refinements wins. The covariance is the inverse of the
+// Gauss-Newton Hessian (points with standard deviation point_sigma, plus the prior).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "gridslam/geometry/pose2.hpp"
+#include "gridslam/grid/rolling_window.hpp"
+#include "gridslam/grid/scan_points.hpp"
+#include "gridslam/scan_matching/matching_field.hpp"
+#include "gridslam/scan_matching/scan_matcher_options.hpp"
+
+namespace gridslam::scan_matching {
+
+struct MatchResult {
+  Pose2 T_odom_base;  ///< Estimated robot pose in the local map's (odometry) frame.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< Of (x, y, theta) [m^2, rad^2].
+  double score = 0.0;     ///< Fraction of the points in observed cells that lie on the map.
+  int iterations = 0;     ///< Gauss-Newton iterations, all stages and starts.
+  int correspondences = 0;  ///< Points matched at the final pose.
+  bool converged = false;   ///< The last stage converged before max_iterations.
+  bool searched = false;    ///< The correlative search ran.
+  bool ok = false;  ///< Enough correspondences; otherwise the pose is the prior.
+};
+
+class ScanMatcher {
+ public:
+  /// `options` must be valid (Validate()).
+  explicit ScanMatcher(const ScanMatcherOptions& options);
+
+  /// Matches `scan` (points in the base frame) against `map`, whose `field` is up to date, from
+  /// the prior pose `T_odom_base_prior` with information `prior_information` on (x, y, theta)
+  /// deviations in the odometry frame (may be zero). Thread-compatible (const, no state).
+  [[nodiscard]] MatchResult Match(const RollingWindow& map, const MatchingField& field,
+                                  const ScanPoints& scan, const Pose2& T_odom_base_prior,
+                                  const Eigen::Matrix3d& prior_information) const;
+
+  /// Gauss-Newton refinement alone, from `start`, with the prior centred on `prior`.
+  [[nodiscard]] MatchResult Refine(const RollingWindow& map, const MatchingField& field,
+                                   const ScanPoints& scan, const Pose2& start, const Pose2& prior,
+                                   const Eigen::Matrix3d& prior_information) const;
+
+  /// The score (see MatchResult::score) of `scan` at `pose`, and the number of matched points.
+  [[nodiscard]] double Score(const RollingWindow& map, const MatchingField& field,
+                             const ScanPoints& scan, const Pose2& pose,
+                             int* correspondences = nullptr) const;
+
+  [[nodiscard]] const ScanMatcherOptions& Options() const { return options_; }
+
+ private:
+  ScanMatcherOptions options_;
+  bool point_to_line_ = true;
+};
+
+}  // namespace gridslam::scan_matching
