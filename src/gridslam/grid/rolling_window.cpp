@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -187,8 +188,11 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
     s.hits = std::min<std::uint16_t>(static_cast<std::uint16_t>(s.hits + 1), memory);
     const float a = 1.0F / static_cast<float>(s.hits);
     const Eigen::Vector2f local = (p - limits.CellCenter(cell)).cast<float>();
+    static const bool kNoMean = getenv("FE_NOMEAN") != nullptr;  // DEBUG
+    if (!kNoMean) {
     s.mean_x += a * (local.x() - s.mean_x);
     s.mean_y += a * (local.y() - s.mean_y);
+    }
     const Eigen::Vector2f n = (R * scan.normals[k]).cast<float>();
     const float q = scan.normal_quality[k];
     s.txx += a * (q * n.x() * n.x() - s.txx);

@@ -20,12 +20,12 @@ std::vector<int> All(int n) {
 Correspondences Make(const Pose2& T_a_b, int n, double noise, std::mt19937& rng,
                      const Eigen::Vector2d& offset = Eigen::Vector2d::Zero()) {
   std::uniform_real_distribution<double> pos(-4.0, 4.0);
-  std::normal_distribution<double> gauss(0.0, noise);
+  std::normal_distribution<double> gauss(0.0, 1.0);
   Correspondences c;
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector2d b = Eigen::Vector2d(pos(rng), pos(rng)) + offset;
     c.b.push_back(b);
-    c.a.push_back(T_a_b * b + Eigen::Vector2d(gauss(rng), gauss(rng)));
+    c.a.push_back(T_a_b * b + noise * Eigen::Vector2d(gauss(rng), gauss(rng)));
   }
   return c;
 }

@@ -15,7 +15,7 @@ Correspondences Make(const Pose2& T_a_b, int n, int n_in, double noise, unsigned
                      std::vector<int>* truth) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(-5.0, 5.0);
-  std::normal_distribution<double> gauss(0.0, noise);
+  std::normal_distribution<double> gauss(0.0, 1.0);
   std::vector<int> order(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) order[static_cast<std::size_t>(k)] = k;
   std::shuffle(order.begin(), order.end(), rng);
@@ -27,7 +27,7 @@ Correspondences Make(const Pose2& T_a_b, int n, int n_in, double noise, unsigned
     const auto slot = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
     c.b[slot] = Eigen::Vector2d(pos(rng), pos(rng));
     if (k < n_in) {
-      c.a[slot] = T_a_b * c.b[slot] + Eigen::Vector2d(gauss(rng), gauss(rng));
+      c.a[slot] = T_a_b * c.b[slot] + noise * Eigen::Vector2d(gauss(rng), gauss(rng));
       truth->push_back(static_cast<int>(slot));
     } else {
       c.a[slot] = Eigen::Vector2d(pos(rng), pos(rng));

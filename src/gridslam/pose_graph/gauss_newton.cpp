@@ -1,16 +1,12 @@
 #include "gridslam/pose_graph/gauss_newton.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCholesky>
-#include <cstdlib>
-#include <Eigen/SparseCore>
 
 #include "gridslam/common/check.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
+#include "gridslam/pose_graph/internal/block_cholesky.hpp"
 
 namespace gridslam::pose_graph {
 
@@ -54,16 +50,18 @@ class NormalEquations {
   /// Fills H and b at poses x.
   void Linearize(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel);
   /// Factorizes H + lambda I; false on a numerical failure.
-  bool Factorize(double lambda);
+  bool Factorize(double lambda) { return cholesky_.Factorize(lambda); }
   /// dx = -(H + lambda I)^-1 b for the last factorization.
-  Eigen::VectorXd Solve() { if (use_cholmod_) { return cholmod_.solve(-b_); } return ldlt_.solve(-b_); }
-  [[nodiscard]] double MaxDiagonal() const;
+  [[nodiscard]] Eigen::VectorXd Solve() const { return cholesky_.Solve(-b_); }
+  [[nodiscard]] double MaxDiagonal() const { return cholesky_.MaxDiagonal(); }
   [[nodiscard]] const Eigen::VectorXd& gradient() const { return b_; }
   /// x_new = x + step * dx on the free vertices.
   void Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::VectorXd& dx, double step,
              std::vector<Eigen::Vector3d>& x_new) const;
   /// dx^T H dx (H without damping).
-  [[nodiscard]] double Quadratic(const Eigen::VectorXd& dx) const;
+  [[nodiscard]] double Quadratic(const Eigen::VectorXd& dx) const {
+    return cholesky_.Quadratic(dx);
+  }
 
  private:
   struct EdgeSlots {
@@ -71,67 +69,59 @@ class NormalEquations {
     int j = 0;
     int bi = -1;  ///< Variable blocks (-1: fixed).
     int bj = -1;
-    std::array<int, 9> ii{};  ///< Value index of H_ii(r, c), -1 above the diagonal.
-    std::array<int, 9> jj{};
-    std::array<int, 9> ij{};  ///< Value index of H_ij(r, c) wherever the lower triangle has it.
+    BlockCholesky::Slot ii;
+    BlockCholesky::Slot jj;
+    BlockCholesky::Slot ij;  ///< Block (bi, bj) of H.
     Eigen::Vector3d z;
     Eigen::Matrix3d information;
   };
 
-  int ValueIndex(int row, int col) const;
+  static BlockCholesky Build(const PoseGraph& graph, const std::vector<int>& block,
+                             int num_blocks);
 
   std::vector<int> block_;  ///< Per vertex index: variable block or -1.
+  int num_blocks_ = 0;
   std::vector<EdgeSlots> edges_;
-  Eigen::SparseMatrix<double> h_;
-  Eigen::SparseMatrix<double> damped_;
-  std::vector<int> diagonal_;
+  BlockCholesky cholesky_;
   Eigen::VectorXd b_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
-  bool use_cholmod_ = std::getenv("GN_CHOLMOD") != nullptr;
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholmod_;
 };
 
-NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed) {
-  const int n = static_cast<int>(graph.num_vertices());
-  GRIDSLAM_CHECK(fixed.size() == U(n)) << "fixed flags must cover every vertex";
-  block_.assign(U(n), -1);
+namespace {
+
+std::vector<int> NumberFreeVertices(const PoseGraph& graph, const std::vector<bool>& fixed,
+                                    int* count) {
+  GRIDSLAM_CHECK(fixed.size() == graph.num_vertices()) << "fixed flags must cover every vertex";
+  std::vector<int> block(fixed.size(), -1);
   int blocks = 0;
-  for (int v = 0; v < n; ++v) {
-    if (!fixed[U(v)]) {
-      block_[U(v)] = blocks++;
+  for (std::size_t v = 0; v < fixed.size(); ++v) {
+    if (!fixed[v]) {
+      block[v] = blocks++;
     }
   }
-  const int dim = 3 * blocks;
-  std::vector<Eigen::Triplet<double>> pattern;
-  pattern.reserve(U(6 * blocks) + 9 * graph.num_edges());
-  for (int b = 0; b < blocks; ++b) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c <= r; ++c) {
-        pattern.emplace_back(3 * b + r, 3 * b + c, 0.0);
-      }
-    }
-  }
+  *count = blocks;
+  return block;
+}
+
+}  // namespace
+
+BlockCholesky NormalEquations::Build(const PoseGraph& graph, const std::vector<int>& block,
+                                     int num_blocks) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(graph.num_edges());
   for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
-    const int bi = block_[U(graph.FromIndex(k))];
-    const int bj = block_[U(graph.ToIndex(k))];
+    const int bi = block[U(graph.FromIndex(k))];
+    const int bj = block[U(graph.ToIndex(k))];
     if (bi >= 0 && bj >= 0 && bi != bj) {
-      const int row = std::max(bi, bj);
-      const int col = std::min(bi, bj);
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          pattern.emplace_back(3 * row + r, 3 * col + c, 0.0);
-        }
-      }
+      pairs.emplace_back(bi, bj);
     }
   }
-  h_.resize(dim, dim);
-  h_.setFromTriplets(pattern.begin(), pattern.end());  // Duplicates collapse to one entry.
-  h_.makeCompressed();
-  b_ = Eigen::VectorXd::Zero(dim);
-  diagonal_.resize(U(dim));
-  for (int d = 0; d < dim; ++d) {
-    diagonal_[U(d)] = ValueIndex(d, d);
-  }
+  return BlockCholesky(num_blocks, pairs);
+}
+
+NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed)
+    : block_(NumberFreeVertices(graph, fixed, &num_blocks_)),
+      cholesky_(Build(graph, block_, num_blocks_)),
+      b_(Eigen::VectorXd::Zero(3 * num_blocks_)) {
   for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
     EdgeSlots s;
     s.i = graph.FromIndex(k);
@@ -140,37 +130,17 @@ NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>
     s.bj = block_[U(s.j)];
     s.z = graph.edge(k).T_i_j.ToVector();
     s.information = graph.edge(k).information;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) {
-        const auto slot = U(3 * r + c);
-        s.ii[slot] = s.bi >= 0 && r >= c ? ValueIndex(3 * s.bi + r, 3 * s.bi + c) : -1;
-        s.jj[slot] = s.bj >= 0 && r >= c ? ValueIndex(3 * s.bj + r, 3 * s.bj + c) : -1;
-        if (s.bi < 0 || s.bj < 0) {
-          s.ij[slot] = -1;
-        } else if (s.bi > s.bj) {
-          s.ij[slot] = ValueIndex(3 * s.bi + r, 3 * s.bj + c);
-        } else if (s.bi < s.bj) {
-          s.ij[slot] = ValueIndex(3 * s.bj + c, 3 * s.bi + r);
-        } else {
-          s.ij[slot] = -1;
-        }
-      }
+    if (s.bi >= 0) {
+      s.ii = cholesky_.Find(s.bi, s.bi);
+    }
+    if (s.bj >= 0) {
+      s.jj = cholesky_.Find(s.bj, s.bj);
+    }
+    if (s.bi >= 0 && s.bj >= 0) {
+      s.ij = cholesky_.Find(s.bi, s.bj);
     }
     edges_.push_back(s);
   }
-  damped_ = h_;
-  if (use_cholmod_) { cholmod_.analyzePattern(damped_); } else {
-  ldlt_.analyzePattern(damped_);  // AMD ordering, computed once.
-  }
-}
-
-int NormalEquations::ValueIndex(int row, int col) const {
-  const int* inner = h_.innerIndexPtr();
-  const int begin = h_.outerIndexPtr()[col];
-  const int end = h_.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(inner + begin, inner + end, row);
-  GRIDSLAM_CHECK(it != inner + end && *it == row) << "entry not in the pattern";
-  return static_cast<int>(it - inner);
 }
 
 void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel,
@@ -180,9 +150,11 @@ void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kern
   for (const EdgeSlots& s : edges_) {
     const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z);
     const double s2 = e.dot(s.information * e);
-    double rho = 0.0;
-    double weight = 0.0;
-    kernel.Evaluate(s2, &rho, &weight);
+    double rho = s2;
+    double weight = 1.0;
+    if (kernel.kind != 0) {
+      kernel.Evaluate(s2, &rho, &weight);
+    }
     total_cost += rho;
     total_chi2 += s2;
   }
@@ -191,8 +163,8 @@ void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kern
 }
 
 void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel) {
-  double* values = h_.valuePtr();
-  std::fill(values, values + h_.nonZeros(), 0.0);
+  cholesky_.SetZero();
+  std::vector<Eigen::Matrix3d>& values = cholesky_.values();
   b_.setZero();
   Eigen::Matrix3d J_i;
   Eigen::Matrix3d J_j;
@@ -201,62 +173,30 @@ void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Ker
       continue;
     }
     const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, &J_i, &J_j);
-    double rho = 0.0;
     double weight = 1.0;
     if (kernel.kind != 0) {
+      double rho = 0.0;
       kernel.Evaluate(e.dot(s.information * e), &rho, &weight);
     }
     const Eigen::Matrix3d omega = weight * s.information;
     const Eigen::Matrix3d A = J_i.transpose() * omega;
     const Eigen::Matrix3d B = J_j.transpose() * omega;
     if (s.bi >= 0) {
-      const Eigen::Matrix3d H_ii = A * J_i;
-      b_.segment<3>(3 * s.bi) += A * e;
-      for (int k = 0; k < 9; ++k) {
-        if (s.ii[U(k)] >= 0) {
-          values[s.ii[U(k)]] += H_ii(k / 3, k % 3);
-        }
-      }
+      values[U(s.ii.index)].noalias() += A * J_i;
+      b_.segment<3>(3 * s.bi).noalias() += A * e;
     }
     if (s.bj >= 0) {
-      const Eigen::Matrix3d H_jj = B * J_j;
-      b_.segment<3>(3 * s.bj) += B * e;
-      for (int k = 0; k < 9; ++k) {
-        if (s.jj[U(k)] >= 0) {
-          values[s.jj[U(k)]] += H_jj(k / 3, k % 3);
-        }
-      }
+      values[U(s.jj.index)].noalias() += B * J_j;
+      b_.segment<3>(3 * s.bj).noalias() += B * e;
     }
     if (s.bi >= 0 && s.bj >= 0) {
-      const Eigen::Matrix3d H_ij = A * J_j;
-      if (s.bi == s.bj) {
-        continue;  // Cannot happen: no self-loops.
-      }
-      for (int k = 0; k < 9; ++k) {
-        values[s.ij[U(k)]] += H_ij(k / 3, k % 3);
+      if (s.ij.transposed) {
+        values[U(s.ij.index)].noalias() += B * J_i;  // H_ji = H_ij^T.
+      } else {
+        values[U(s.ij.index)].noalias() += A * J_j;
       }
     }
   }
-}
-
-bool NormalEquations::Factorize(double lambda) {
-  std::copy(h_.valuePtr(), h_.valuePtr() + h_.nonZeros(), damped_.valuePtr());
-  if (lambda > 0.0) {
-    for (const int d : diagonal_) {
-      damped_.valuePtr()[d] += lambda;
-    }
-  }
-  if (use_cholmod_) { cholmod_.factorize(damped_); return cholmod_.info() == Eigen::Success; }
-  ldlt_.factorize(damped_);
-  return ldlt_.info() == Eigen::Success;
-}
-
-double NormalEquations::MaxDiagonal() const {
-  double best = 0.0;
-  for (const int d : diagonal_) {
-    best = std::max(best, h_.valuePtr()[d]);
-  }
-  return best;
 }
 
 void NormalEquations::Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::VectorXd& dx,
@@ -267,10 +207,6 @@ void NormalEquations::Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::
       x_new[v] += step * dx.segment<3>(3 * block_[v]);
     }
   }
-}
-
-double NormalEquations::Quadratic(const Eigen::VectorXd& dx) const {
-  return dx.dot(h_.selfadjointView<Eigen::Lower>() * dx);
 }
 
 }  // namespace internal

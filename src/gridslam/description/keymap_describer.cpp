@@ -1,0 +1,130 @@
+#include "gridslam/description/keymap_describer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <opencv2/core.hpp>
+
+#include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+#include "gridslam/features/surf_feature2d.hpp"
+#include "gridslam/grid/log_odds.hpp"
+
+namespace gridslam::description {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+matching::VerificationInput KeyMapDescription::Verification(const KeyMapDescription& a,
+                                                            const KeyMapDescription& b) {
+  matching::VerificationInput input;
+  input.points_b = b.obstacle_points;
+  input.distance_a = &a.distance;
+  input.points_a = a.obstacle_points;
+  input.distance_b = &b.distance;
+  return input;
+}
+
+KeyMapDescriber::KeyMapDescriber(const DescriptionOptions& options) : options_(options) {
+  auto detector = features::CreateDetector(options.detector, options.surf);
+  GRIDSLAM_CHECK(detector.ok()) << detector.error().ToString();
+  detector_ = detector.value();
+}
+
+KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
+  const Grid2D<float>& log_odds = key_map.log_odds;
+  const int width = log_odds.Width();
+  const int height = log_odds.Height();
+  const auto occupied = static_cast<float>(ProbabilityToLogOdds(options_.occupied_probability));
+  const auto observed = static_cast<float>(options_.observed_log_odds);
+  KeyMapImages images;
+  images.obstacle = cv::Mat(height, width, CV_8U);
+  images.grid = cv::Mat(height, width, CV_8U);
+  for (int j = 0; j < height; ++j) {
+    auto* obstacle_row = images.obstacle.ptr<std::uint8_t>(j);
+    auto* grid_row = images.grid.ptr<std::uint8_t>(j);
+    const float* l = log_odds.data() + static_cast<std::ptrdiff_t>(j) * width;
+    for (int i = 0; i < width; ++i) {
+      const bool is_obstacle = l[i] > occupied;
+      obstacle_row[i] = is_obstacle ? 0 : 255;
+      grid_row[i] = is_obstacle ? 0 : (std::abs(l[i]) > observed ? 255 : 128);
+    }
+  }
+  images.distance_cells = distance_transform::DistanceTransformCells(images.obstacle);
+  const cv::Mat& distance_cells = images.distance_cells;
+  if (options_.minmax_normalization) {
+    cv::Mat finite = distance_cells.clone();
+    cv::patchNaNs(finite, 0.0);
+    finite.setTo(0.0F, finite == std::numeric_limits<float>::infinity());
+    cv::normalize(finite, images.distance, 0, 255, cv::NORM_MINMAX, CV_8U);
+  } else {
+    const double clamp_cells = options_.distance_clamp / log_odds.Limits().Resolution();
+    images.distance = distance_transform::DistanceToImage(distance_cells, clamp_cells);
+  }
+  return images;
+}
+
+KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const {
+  auto start = std::chrono::steady_clock::now();
+  KeyMapDescription description;
+  const Grid2D<float>& log_odds = key_map.log_odds;
+  const MapLimits& limits = log_odds.Limits();
+  const double resolution = limits.Resolution();
+  const KeyMapImages images = Images(key_map);
+
+  // Metric distance field with unobserved cells marked, and the obstacle cell centres.
+  description.distance = Grid2D<float>(limits, matching::kUnknownDistance);
+  const cv::Mat& distance_cells = images.distance_cells;
+  const auto observed = static_cast<float>(options_.observed_log_odds);
+  for (int j = 0; j < limits.Height(); ++j) {
+    const auto* d = distance_cells.ptr<float>(j);
+    const auto* obstacle = images.obstacle.ptr<std::uint8_t>(j);
+    for (int i = 0; i < limits.Width(); ++i) {
+      if (obstacle[i] == 0) {
+        description.obstacle_points.push_back(limits.CellCenter({i, j}));
+      }
+      if (std::abs(log_odds(i, j)) > observed && std::isfinite(d[i])) {
+        description.distance(i, j) = static_cast<float>(d[i] * resolution);
+      }
+    }
+  }
+  description.seconds_distance = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  const cv::Mat& detect_on =
+      options_.detect_image == "grid" ? images.grid : images.distance;
+  const cv::Mat& describe_on = options_.descriptor_image == "obstacle" ? images.obstacle
+                               : options_.descriptor_image == "grid"   ? images.grid
+                                                                        : images.distance;
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  detector_->detect(detect_on, keypoints);
+  detector_->compute(describe_on, keypoints, descriptors);
+
+  matching::FeatureSet& features = description.features;
+  features.descriptors = descriptors;
+  const bool upright = options_.detector == "usurf";
+  const bool has_laplacian = options_.detector == "surf" || options_.detector == "usurf";
+  for (const cv::KeyPoint& kp : keypoints) {
+    features.points.push_back(limits.Origin() +
+                              Eigen::Vector2d(kp.pt.x + 0.5, kp.pt.y + 0.5) * resolution);
+    features.scales.push_back(static_cast<double>(kp.size) * resolution);
+    if (has_laplacian) {
+      features.laplacian_sign.push_back(kp.class_id >= 0 ? 1 : -1);
+    }
+    if (!upright && kp.angle >= 0.0F) {
+      features.angles.push_back(NormalizeAngle(kp.angle * std::numbers::pi / 180.0));
+    }
+  }
+  if (features.angles.size() != features.points.size()) {
+    features.angles.clear();
+  }
+  description.seconds_features = SecondsSince(start);
+  return description;
+}
+
+}  // namespace gridslam::description

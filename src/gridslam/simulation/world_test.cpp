@@ -1,0 +1,115 @@
+#include "gridslam/simulation/world.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "gridslam/simulation/internal/distance_field.hpp"
+#include "gridslam/simulation/random.hpp"
+#include "gridslam/simulation/simulator.hpp"
+
+namespace gridslam::simulation {
+namespace {
+
+TEST(WorldTest, BuilderCoversCellsWhoseCentresLieInTheRectangle) {
+  WorldBuilder builder(2.0, 1.0, 0.1);
+  builder.Carve(0.2, 0.1, 0.5, 0.4);
+  const World world = builder.Build("tiny", {});
+  ASSERT_EQ(world.walls.Width(), 20);
+  ASSERT_EQ(world.walls.Height(), 10);
+  for (int j = 0; j < 10; ++j) {
+    for (int i = 0; i < 20; ++i) {
+      const bool free = i >= 2 && i < 5 && j >= 1 && j < 4;
+      EXPECT_EQ(world.walls(i, j), free ? 0 : 1) << i << "," << j;
+    }
+  }
+  EXPECT_TRUE(world.IsWall({-0.1, 0.2}));  // outside the grid
+  EXPECT_FALSE(world.IsWall({0.3, 0.2}));
+}
+
+TEST(WorldTest, DistanceTransformEqualsBruteForce) {
+  Random random(3);
+  const int w = 37;
+  const int h = 23;
+  std::vector<std::uint8_t> obstacle(static_cast<std::size_t>(w * h));
+  for (auto& o : obstacle) {
+    o = random.Bernoulli(0.05) ? 1 : 0;
+  }
+  const std::vector<float> d = internal::DistanceTransform(obstacle, w, h);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      double best = w + h;
+      for (int q = 0; q < h; ++q) {
+        for (int p = 0; p < w; ++p) {
+          if (obstacle[static_cast<std::size_t>(q * w + p)] != 0) {
+            best = std::min(best, std::hypot(p - i, q - j));
+          }
+        }
+      }
+      EXPECT_NEAR(d[static_cast<std::size_t>(j * w + i)], best, 1e-4);
+    }
+  }
+}
+
+TEST(WorldTest, ClearanceNeverOverestimatesTheDistanceToAWall) {
+  WorldBuilder builder(10.0, 10.0, 0.05);
+  builder.Carve(1.0, 1.0, 9.0, 9.0);
+  const World world = builder.Build("box", {});
+  EXPECT_LE(world.Clearance({5.0, 5.0}), 4.0);
+  EXPECT_GT(world.Clearance({5.0, 5.0}), 3.9);
+  EXPECT_LE(world.Clearance({1.3, 5.0}), 0.3);
+  EXPECT_GT(world.Clearance({1.3, 5.0}), 0.2);
+  EXPECT_EQ(world.Clearance({0.5, 5.0}), 0.0);
+}
+
+TEST(WorldTest, TrueMapMarksFreeSpaceWallFacesAndSolidInterior) {
+  WorldBuilder builder(10.0, 10.0, 0.05);
+  builder.Carve(2.0, 2.0, 8.0, 8.0);
+  const OccupancyImage map = TrueMap(builder.Build("box", {}), 0.3);
+  const MapLimits& l = map.Limits();
+  EXPECT_EQ(map.at(l.CellIndex({5.0, 5.0})), kFreeCell);
+  EXPECT_EQ(map.at(l.CellIndex({1.9, 5.0})), kOccupiedCell);
+  EXPECT_EQ(map.at(l.CellIndex({1.76, 5.0})), kOccupiedCell);
+  EXPECT_EQ(map.at(l.CellIndex({1.0, 5.0})), kUnknownCell);
+}
+
+TEST(WorldTest, FloorPlanImagesAndOccupancyMapsBecomeWorlds) {
+  Grid2D<std::uint8_t> image(MapLimits(0.1, {0.0, 0.0}, 4, 2), 255);
+  image(1, 0) = 20;   // dark: wall
+  image(2, 1) = 200;  // light: free
+  const World from_image = WorldFromGrayImage("plan", image);
+  EXPECT_EQ(from_image.walls(1, 0), 1);
+  EXPECT_EQ(from_image.walls(2, 1), 0);
+  OccupancyImage map(MapLimits(0.1, {0.0, 0.0}, 3, 1), kFreeCell);
+  map(1, 0) = kUnknownCell;
+  map(2, 0) = kOccupiedCell;
+  const World from_map = WorldFromOccupancy("map", map);
+  EXPECT_EQ(from_map.walls(0, 0), 0);
+  EXPECT_EQ(from_map.walls(1, 0), 1);
+  EXPECT_EQ(from_map.walls(2, 0), 1);
+}
+
+TEST(WorldTest, BuiltinWorldsHaveTheirSizeAndACollisionFreeTour) {
+  for (const std::string& name : BuiltinWorldNames()) {
+    const auto world = MakeBuiltinWorld(name, 0.05);
+    ASSERT_TRUE(world.ok()) << name;
+    const double width = world.value().walls.Width() * 0.05;
+    const double height = world.value().walls.Height() * 0.05;
+    EXPECT_GE(width, 49.9) << name;
+    EXPECT_GE(height, 29.9) << name;
+    ASSERT_GE(world.value().route.size(), 10U) << name;
+    EXPECT_TRUE((world.value().route.front() - world.value().route.back()).norm() < 1e-9)
+        << name << ": the tour is closed";
+    // One whole tour: Simulate fails if the robot comes within robot_radius of a wall.
+    SimulationOptions options;
+    options.relations.revisit_stride = 1000;
+    const auto run = Simulate(world.value(), {}, options);
+    ASSERT_TRUE(run.ok()) << name << ": " << run.error().ToString();
+    EXPECT_GT(run.value().robots[0].distance, 300.0) << name;
+    EXPECT_GE(run.value().robots[0].min_clearance, options.motion.robot_radius) << name;
+  }
+  EXPECT_FALSE(MakeBuiltinWorld("nowhere", 0.05).ok());
+}
+
+}  // namespace
+}  // namespace gridslam::simulation
