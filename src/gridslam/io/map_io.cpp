@@ -247,7 +247,7 @@ Status WriteMapPicture(const std::string& path, const OccupancyImage& map,
     return cv::Point(static_cast<int>(std::floor(c.x())),
                      height - 1 - static_cast<int>(std::floor(c.y())));
   };
-  const int thickness = std::max(1, static_cast<int>(std::lround(0.05 / res)));
+  const int thickness = std::max(1, static_cast<int>(std::lround(0.1 / res)));
   for (std::size_t k = 0; k < paths.size(); ++k) {
     const cv::Scalar& colour = colours[k % 6];
     const auto& points = paths[k];

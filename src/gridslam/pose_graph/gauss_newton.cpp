@@ -79,8 +79,8 @@ class NormalEquations {
   static BlockCholesky Build(const PoseGraph& graph, const std::vector<int>& block,
                              int num_blocks);
 
+  int num_blocks_ = 0;      // Declared before block_, which sets it.
   std::vector<int> block_;  ///< Per vertex index: variable block or -1.
-  int num_blocks_ = 0;
   std::vector<EdgeSlots> edges_;
   BlockCholesky cholesky_;
   Eigen::VectorXd b_;

@@ -5,17 +5,16 @@
 //
 // Each connected component gets a spanning tree rooted at its fixed vertices (one anchor per
 // component); all roots hang from one virtual root at the map origin. A vertex's parameter is its
-// pose relative to its parent (§4.2 item 2; see SgdOptions::variant for the two forms). Edges are
+// pose minus its parent's pose, component-wise in the global frame (§4.2 item 2). Edges are
 // processed one at a time, ordered by the level of the top node of their tree path (§4.2 item 4).
 // For an edge, the residual r = (p_i (+) Z) - p_j (theta wrapped) weighted by W = R Omega R^T
 // gives the gradient d = 2 W r; the total correction beta = l * alpha * d, with the per-dimension
 // learning rate alpha = 1 / (gamma * t), is clamped to |r| and split over the path nodes in
 // proportion to 1 / M (M = Jacobi preconditioner: the summed information of the edges whose path
-// contains the node), with opposite signs on the two branches (§4.2 item 5). The "relative"
-// variant computes the residual exactly in the frame of the path's top and distributes the
-// rotation first, so a corrected heading swings the whole subtree below a node; this removes
-// TORO's slow propagation of rotations into positions and, with rotation-invariant weights, its
-// dependence on the frame of the information matrix (its x-y correlations).
+// contains the node), with opposite signs on the two branches (§4.2 item 5). Unlike TORO, the
+// default variant rotates the full information matrix (x-y-theta correlations included) into the
+// global frame with the predicted pose's rotation, so r^T W r is exactly the g2o chi^2 of the
+// edge; and the spanning tree is chosen per graph for the shortest total path length.
 //
 // Incremental use (§4.2 item 8, §4.3): AddVertex/AddEdge between Iterate() calls. A new vertex
 // joined by its first edge becomes a leaf of that edge's other end and is initialized from the
@@ -27,6 +26,7 @@
 // Not thread-safe; one optimizer per graph.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -73,6 +73,7 @@ class SgdOptimizer {
   // Structure (sgd_optimizer.cpp).
   void Rebuild();
   void BuildTree();
+  void BuildTree(const std::string& kind);
   void FillEdgeInfo(SgdEdge& edge) const;
   void InsertSorted(int edge_index);
   void AttachLeaf(int leaf, int parent, const Eigen::Vector3d& T_parent_leaf);
@@ -83,26 +84,19 @@ class SgdOptimizer {
   void SyncGraph() const;
   int CollectBranch(int v, int top, std::vector<int>& nodes) const;
   [[nodiscard]] int Root(int v) const;
-  [[nodiscard]] bool relative() const { return options_.variant == "relative"; }
 
   // One iteration (sgd_update.cpp).
   void ComputePreconditioner();
-  double EdgeSchedule(const SgdEdge& edge);
-  void UpdateEdgeGlobal(const SgdEdge& edge);
-  void UpdateEdgeRelative(const SgdEdge& edge);
-  Eigen::Vector3d ComposeBranch(const std::vector<int>& branch, std::vector<double>* parent_theta);
+  void UpdateEdge(const SgdEdge& edge);
 
   SgdOptions options_;
   mutable PoseGraph graph_;
   mutable bool graph_synced_ = true;
   int iterations_ = 0;
-  double last_chi2_ = -1.0;
-  bool block_ = false;
-  std::vector<Eigen::Matrix3d> precond_block_;
 
   // Per vertex index.
   std::vector<Eigen::Vector3d> pose_;   ///< (x, y, theta) in the map, theta not wrapped.
-  std::vector<Eigen::Vector3d> param_;  ///< Relative to the parent (roots: their pose).
+  std::vector<Eigen::Vector3d> param_;  ///< pose - parent pose (roots: their pose).
   std::vector<Eigen::Vector3d> precond_;
   std::vector<double> age_;  ///< Per-node schedule t_n (learning rate 1 / (gamma t_n)).
   std::vector<int> parent_;  ///< Parent vertex index, -1 for roots.
@@ -118,10 +112,6 @@ class SgdOptimizer {
   // Scratch space of one edge update.
   std::vector<int> branch1_;
   std::vector<int> branch2_;
-  std::vector<double> theta1_;
-  std::vector<double> theta2_;
-  std::vector<Eigen::Vector3d> share_;  ///< Per path node: its weight 1 / (M t) per dimension.
-  Eigen::Vector3d total_share_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace gridslam::pose_graph

@@ -104,11 +104,13 @@ Result<RobotRun> RunRobot(const World& world, const Route& base_route,
     const double clearance = world.Clearance(next.translation());
     run.min_clearance = std::min(run.min_clearance, clearance);
     if (clearance < options.motion.robot_radius) {
-      return InvalidInput("robot " + std::to_string(index) + " comes within " +
-                          std::to_string(clearance) + " m of a wall at " +
-                          FormatPoint(next.translation()) + " after " +
-                          std::to_string(static_cast<double>(k) * dt) +
-                          " s; the route must keep robot_radius clear of walls");
+      std::ostringstream message;
+      message.precision(2);
+      message << std::fixed << "robot " << index << " comes within " << clearance
+              << " m of a wall at " << FormatPoint(next.translation()) << " after "
+              << static_cast<double>(k) * dt << " s; the route must keep "
+              << options.motion.robot_radius << " m (robot_radius) clear of walls";
+      return InvalidInput(message.str());
     }
   }
   return run;

@@ -1,0 +1,127 @@
+#include "gridslam/loop_closure/grid_refinement.hpp"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace gridslam::loop_closure {
+
+Status RefinementOptions::Validate() const {
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_iterations >= 1, "refinement.max_iterations >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(huber > 0.0, "refinement.huber > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_distance > 0.0, "refinement.max_distance > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_points >= 1, "refinement.max_points >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(min_points >= 3, "refinement.min_points >= 3"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_step > 0.0, "refinement.max_step > 0"));
+  return Status::Ok();
+}
+
+namespace {
+
+// Bilinear interpolation of the distance field at p (metres) with its gradient. False when any of
+// the four cells is unknown or outside the grid.
+bool Interpolate(const Grid2D<float>& field, const Eigen::Vector2d& p, double* value,
+                 Eigen::Vector2d* gradient) {
+  const MapLimits& limits = field.Limits();
+  const Eigen::Vector2d c = limits.ToCellCoordinates(p);
+  const int i = static_cast<int>(std::floor(c.x()));
+  const int j = static_cast<int>(std::floor(c.y()));
+  if (i < 0 || j < 0 || i + 1 >= limits.Width() || j + 1 >= limits.Height()) {
+    return false;
+  }
+  const double v00 = field(i, j);
+  const double v10 = field(i + 1, j);
+  const double v01 = field(i, j + 1);
+  const double v11 = field(i + 1, j + 1);
+  if (v00 < 0.0 || v10 < 0.0 || v01 < 0.0 || v11 < 0.0) {
+    return false;
+  }
+  const double fx = c.x() - i;
+  const double fy = c.y() - j;
+  *value = (1 - fx) * (1 - fy) * v00 + fx * (1 - fy) * v10 + (1 - fx) * fy * v01 + fx * fy * v11;
+  const double dx = (1 - fy) * (v10 - v00) + fy * (v11 - v01);
+  const double dy = (1 - fx) * (v01 - v00) + fx * (v11 - v10);
+  *gradient = Eigen::Vector2d(dx, dy) / limits.Resolution();
+  return true;
+}
+
+struct System {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double cost = 0.0;
+  double sum_sq = 0.0;
+  int used = 0;
+  int inliers = 0;
+};
+
+System Linearize(std::span<const Eigen::Vector2d> points, int stride, const Grid2D<float>& field,
+                 const Pose2& T, const RefinementOptions& options) {
+  System s;
+  for (std::size_t k = 0; k < points.size(); k += static_cast<std::size_t>(stride)) {
+    const Eigen::Vector2d q = T * points[k];
+    double d = 0.0;
+    Eigen::Vector2d grad;
+    if (!Interpolate(field, q, &d, &grad) || d > options.max_distance) {
+      continue;
+    }
+    // Left perturbation q' = R(dtheta) q + dt: dq'/d(dx, dy, dtheta) = [I, (-q_y, q_x)].
+    const Eigen::Vector2d dq_dtheta(-q.y(), q.x());
+    const Eigen::Vector3d J(grad.x(), grad.y(), grad.dot(dq_dtheta));
+    const double w = d <= options.huber ? 1.0 : options.huber / d;
+    s.H += w * J * J.transpose();
+    s.g += w * J * d;
+    s.cost += d <= options.huber ? d * d : options.huber * (2.0 * d - options.huber);
+    s.sum_sq += d * d;
+    ++s.used;
+    s.inliers += d <= options.huber ? 1 : 0;
+  }
+  return s;
+}
+
+}  // namespace
+
+RefinementResult RefineOnDistanceField(std::span<const Eigen::Vector2d> points_b,
+                                       const Grid2D<float>& distance_a, const Pose2& T_a_b,
+                                       const RefinementOptions& options) {
+  RefinementResult result;
+  result.T_a_b = T_a_b;
+  const int stride = std::max<int>(
+      1, static_cast<int>(points_b.size()) / std::max(1, options.max_points));
+  Pose2 T = T_a_b;
+  System s = Linearize(points_b, stride, distance_a, T, options);
+  for (int it = 0; it < options.max_iterations; ++it) {
+    if (s.used < options.min_points) {
+      return result;
+    }
+    Eigen::Matrix3d H = s.H;
+    H.diagonal() += Eigen::Vector3d::Constant(1e-6 * (H.trace() + 1e-9));
+    const Eigen::Vector3d delta = -H.ldlt().solve(s.g);
+    // Left update: T <- exp(delta) applied in a's frame (delta = (dx, dy, dtheta) about a's origin).
+    const Pose2 step(delta.x(), delta.y(), delta.z());
+    Pose2 candidate = step * T;
+    System next = Linearize(points_b, stride, distance_a, candidate, options);
+    ++result.iterations;
+    if (next.used < options.min_points ||
+        next.cost / std::max(1, next.used) > s.cost / std::max(1, s.used) + 1e-12) {
+      break;
+    }
+    T = candidate;
+    s = next;
+    if (delta.head<2>().norm() < 1e-5 && std::abs(delta.z()) < 1e-6) {
+      break;
+    }
+  }
+  if (s.used < options.min_points ||
+      (T.translation() - T_a_b.translation()).norm() > options.max_step) {
+    return result;
+  }
+  result.ok = true;
+  result.T_a_b = T;
+  result.points = s.used;
+  result.rms = std::sqrt(s.sum_sq / s.used);
+  result.inlier_fraction = static_cast<double>(s.inliers) / s.used;
+  result.hessian = s.H / s.used;
+  return result;
+}
+
+}  // namespace gridslam::loop_closure

@@ -1,0 +1,66 @@
+#include "gridslam/loop_closure/grid_refinement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+
+namespace gridslam::loop_closure {
+namespace {
+
+// An L-shaped room plus a pillar: walls as obstacle cells of a 10 m grid.
+Grid2D<std::uint8_t> Room() {
+  Grid2D<std::uint8_t> obstacles(MapLimits(0.05, Eigen::Vector2d(-5.0, -5.0), 200, 200), 0);
+  for (int k = 20; k < 180; ++k) {
+    obstacles(k, 20) = 1;
+    obstacles(20, k) = 1;
+    obstacles(k, 179) = 1;
+    obstacles(179, k / 2 + 90) = 1;
+  }
+  for (int i = 100; i < 110; ++i) {
+    for (int j = 60; j < 64; ++j) {
+      obstacles(i, j) = 1;
+    }
+  }
+  return obstacles;
+}
+
+TEST(GridRefinement, RecoversSmallOffsetToSubCellAccuracy) {
+  const Grid2D<std::uint8_t> obstacles = Room();
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  std::vector<Eigen::Vector2d> points_a;
+  for (int j = 0; j < obstacles.Height(); ++j) {
+    for (int i = 0; i < obstacles.Width(); ++i) {
+      if (obstacles(i, j) != 0) {
+        points_a.push_back(obstacles.Limits().CellCenter({i, j}));
+      }
+    }
+  }
+  // Points of "b" are a's obstacles seen from frame b: p_b = T_a_b^-1 p_a.
+  const Pose2 T_a_b(0.7, -0.4, 0.3);
+  std::vector<Eigen::Vector2d> points_b;
+  for (const auto& p : points_a) {
+    points_b.push_back(T_a_b.Inverse() * p);
+  }
+  const Pose2 start = Pose2(0.08, -0.06, 0.02) * T_a_b;
+  RefinementOptions options;
+  const RefinementResult result = RefineOnDistanceField(points_b, distance, start, options);
+  ASSERT_TRUE(result.ok);
+  EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(), 0.01);
+  EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - T_a_b.theta())), 0.002);
+  EXPECT_GT(result.inlier_fraction, 0.9);
+  EXPECT_LT(result.rms, 0.02);
+}
+
+TEST(GridRefinement, FailsWithoutOverlap) {
+  const Grid2D<float> distance =
+      distance_transform::DistanceTransformMetres(Room());
+  const std::vector<Eigen::Vector2d> far = {{100.0, 100.0}, {101.0, 100.0}, {100.0, 101.0}};
+  const RefinementResult result =
+      RefineOnDistanceField(far, distance, Pose2::Identity(), RefinementOptions{});
+  EXPECT_FALSE(result.ok);
+}
+
+}  // namespace
+}  // namespace gridslam::loop_closure

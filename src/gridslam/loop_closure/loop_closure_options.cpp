@@ -1,0 +1,23 @@
+#include "gridslam/loop_closure/loop_closure_options.hpp"
+
+namespace gridslam::loop_closure {
+
+Status LoopClosureOptions::Validate() const {
+  GRIDSLAM_RETURN_IF_ERROR(Require(min_travel_gap >= 0.0, "loop_closure.min_travel_gap >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(search_radius > 0.0, "loop_closure.search_radius > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(search_radius_per_m >= 0.0, "loop_closure.search_radius_per_m >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(max_search_radius >= search_radius, "loop_closure.max_search_radius >= search_radius"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_candidates >= 0, "loop_closure.max_candidates >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(gate_xy > 0.0 && gate_theta > 0.0, "loop_closure gates > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(sigma_xy > 0.0 && sigma_theta > 0.0, "loop_closure sigmas > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(min_join_matches >= 1, "loop_closure.min_join_matches >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(appearance_every >= 0, "loop_closure.appearance_every >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(appearance_candidates >= 0, "loop_closure.appearance_candidates >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(prune_chi2 > 0.0, "loop_closure.prune_chi2 > 0"));
+  return refinement.Validate();
+}
+
+}  // namespace gridslam::loop_closure

@@ -1,0 +1,78 @@
+// Options of the loop-closure search and its gates (DESIGN.md §1.6; paper reconstruction §1.5.6).
+#pragma once
+
+#include "gridslam/common/options.hpp"
+#include "gridslam/loop_closure/grid_refinement.hpp"
+
+namespace gridslam::loop_closure {
+
+struct LoopClosureOptions {
+  bool enabled = true;
+  /// Key maps closer than this along the robot's own path are never candidates (the paper skips
+  /// the 12 most recent key maps) [m].
+  double min_travel_gap = 10.0;
+  /// Candidates: older key maps whose predicted centre lies within this radius ... [m]
+  double search_radius = 4.0;
+  /// ... plus this much per metre of uncertainty distance (graph path length) [m/m].
+  double search_radius_per_m = 0.05;
+  /// ... capped here [m].
+  double max_search_radius = 12.0;
+  /// Aligned candidates per new key map at most (the nearest, spread along the path) [-].
+  int max_candidates = 3;
+  /// Candidates closer than this to another chosen candidate along the path are skipped [m].
+  double candidate_spacing = 3.0;
+  /// Consistency gate with the current estimate: a closure is accepted when it differs from the
+  /// predicted relative pose by at most gate_xy + gate_xy_per_m * u [m] and
+  /// gate_theta + gate_theta_per_m * u [rad], u the uncertainty distance between the key maps.
+  double gate_xy = 0.3;
+  double gate_xy_per_m = 0.04;
+  double gate_theta = 0.05;
+  double gate_theta_per_m = 0.004;
+  /// Loop edges: standard deviations of the measured relative pose [m, rad].
+  double sigma_xy = 0.03;
+  double sigma_theta = 0.005;
+  /// Closures between components (robots not yet joined) need this many mutually consistent
+  /// verified matches before the components are joined [-].
+  int min_join_matches = 2;
+  /// Two closures are mutually consistent when the loop they form with the graph closes within
+  /// this [m] and [rad].
+  double pairwise_xy = 0.3;
+  double pairwise_theta = 0.05;
+  /// Global appearance search across components: run it for every n-th new key map [-].
+  int appearance_every = 2;
+  /// Key maps voted for by the appearance search that are aligned [-].
+  int appearance_candidates = 3;
+  /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
+  double prune_chi2 = 25.0;
+  RefinementOptions refinement;
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled, "Search for loop closures");
+    v("min_travel_gap", min_travel_gap, "Minimum path distance between a key map and a candidate [m]");
+    v("search_radius", search_radius, "Candidate search radius around the predicted pose [m]");
+    v("search_radius_per_m", search_radius_per_m,
+      "Search radius growth per metre of uncertainty distance [m/m]");
+    v("max_search_radius", max_search_radius, "Search radius cap [m]");
+    v("max_candidates", max_candidates, "Candidates aligned per key map at most [-]");
+    v("candidate_spacing", candidate_spacing, "Minimum path spacing of chosen candidates [m]");
+    v("gate_xy", gate_xy, "Consistency gate: translation tolerance [m] ...");
+    v("gate_xy_per_m", gate_xy_per_m, "... plus this per metre of uncertainty distance [m/m]");
+    v("gate_theta", gate_theta, "Consistency gate: rotation tolerance [rad] ...");
+    v("gate_theta_per_m", gate_theta_per_m, "... plus this per metre [rad/m]");
+    v("sigma_xy", sigma_xy, "Loop edge standard deviation, translation [m]");
+    v("sigma_theta", sigma_theta, "Loop edge standard deviation, rotation [rad]");
+    v("min_join_matches", min_join_matches,
+      "Mutually consistent matches needed to join two robots' graphs [-]");
+    v("pairwise_xy", pairwise_xy, "Pairwise consistency tolerance, translation [m]");
+    v("pairwise_theta", pairwise_theta, "Pairwise consistency tolerance, rotation [rad]");
+    v("appearance_every", appearance_every,
+      "Run the global appearance search for every n-th key map (0 = never) [-]");
+    v("appearance_candidates", appearance_candidates, "Best-voted key maps aligned [-]");
+    v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
+    v.Section("refinement", refinement, "Refinement of alignments on the distance field");
+  }
+  [[nodiscard]] Status Validate() const;
+};
+
+}  // namespace gridslam::loop_closure
