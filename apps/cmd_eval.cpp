@@ -7,10 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "command.hpp"
 #include "gridslam/eval/relation_metric.hpp"
 #include "gridslam/io/relations_io.hpp"
 #include "gridslam/io/trajectory_io.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -92,8 +93,7 @@ RunFunction SetupEval(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("TRAJECTORY", args->trajectory, "Trajectory (timestamp x y theta, or TUM)")
       ->required();
   sub.add_flag("--json", args->json, "Print one JSON object");
-  sub.add_option("--min-dt", args->min_dt,
-                 "Score only relations with |t2 - t1| >= S [s]");
+  sub.add_option("--min-dt", args->min_dt, "Score only relations with |t2 - t1| >= S [s]");
   sub.add_option("--max-dt", args->max_dt,
                  "Score only relations with |t2 - t1| < S [s]; 0 = no limit");
   sub.add_option("--tolerance", args->tolerance,

@@ -4,9 +4,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "command.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/trajectory_io.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -64,14 +65,14 @@ RunFunction SetupOdometry(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<OdometryArgs>();
   sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Trajectory file (.tum = TUM, else timestamp x y "
-                                              "theta)")
+  sub.add_option("-o,--output", args->output,
+                 "Trajectory file (.tum = TUM, else timestamp x y "
+                 "theta)")
       ->required();
   sub.add_option("--laser-offset", args->laser_offset,
                  "Laser mounting x y theta [m m rad] (overrides log.laser_offset and PARAM lines)")
       ->expected(3);
-  sub.add_option("--frame", args->frame,
-                 "base or laser (default: eval.trajectory_frame)");
+  sub.add_option("--frame", args->frame, "base or laser (default: eval.trajectory_frame)");
   return [args](AppContext& ctx) { return RunOdometry(*args, ctx); };
 }
 

@@ -13,10 +13,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "command.hpp"
 #include "gridslam/io/g2o_io.hpp"
+#include "gridslam/pose_graph/edge_error.hpp"
 #include "gridslam/pose_graph/graph_utils.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -32,7 +34,7 @@ struct OptimizeArgs {
   std::optional<std::string> method;
   std::optional<int> warmup;
   std::optional<std::string> sgd_tree;
-  std::optional<std::string> sgd_weights;
+  std::optional<std::string> sgd_variant;
   std::optional<std::string> robust_kernel;
   std::optional<double> robust_width;
 };
@@ -47,7 +49,7 @@ int RunOptimize(const OptimizeArgs& args, AppContext& context) {
   options.method = args.method.value_or(options.method);
   options.warmup_iterations = args.warmup.value_or(options.warmup_iterations);
   options.sgd.tree = args.sgd_tree.value_or(options.sgd.tree);
-  options.sgd.weights = args.sgd_weights.value_or(options.sgd.weights);
+  options.sgd.variant = args.sgd_variant.value_or(options.sgd.variant);
   options.gn.robust_kernel = args.robust_kernel.value_or(options.gn.robust_kernel);
   options.gn.robust_width = args.robust_width.value_or(options.gn.robust_width);
   if (const Status s = options.Validate(); !s.ok()) {
@@ -76,8 +78,10 @@ int RunOptimize(const OptimizeArgs& args, AppContext& context) {
   if (args.verbose) {
     callback = [&](const pose_graph::IterationRecord& r) {
       if (args.json) {
-        history.push_back(
-            {{"stage", r.stage}, {"iteration", r.iteration}, {"chi2", r.chi2}, {"seconds", r.seconds}});
+        history.push_back({{"stage", r.stage},
+                           {"iteration", r.iteration},
+                           {"chi2", r.chi2},
+                           {"seconds", r.seconds}});
       } else {
         std::printf("%-3s %4d  chi2=%.10g  t=%.6f s\n", r.stage.c_str(), r.iteration, r.chi2,
                     r.seconds);
@@ -85,15 +89,13 @@ int RunOptimize(const OptimizeArgs& args, AppContext& context) {
     };
   }
   if (!args.json) {
-    std::printf("graph: %s (%zu vertices, %zu edges%s)\n", args.graph.c_str(),
-                graph.num_vertices(), graph.num_edges(),
-                chain ? ", odometry-chained initial guess" : "");
+    std::printf("graph: %s (%zu vertices, %zu edges%s)\n", args.graph.c_str(), graph.num_vertices(),
+                graph.num_edges(), chain ? ", odometry-chained initial guess" : "");
+    std::printf("chi2_initial=%.10g method=%s\n", pose_graph::Chi2(graph), options.method.c_str());
+    std::fflush(stdout);
   }
   const pose_graph::OptimizationReport report =
       pose_graph::Optimize(graph, options, args.iterations, callback);
-  if (!args.json) {
-    std::printf("chi2_initial=%.10g\n", report.chi2_initial);
-  }
 
   if (const Status s = io::WritePoseGraphFile(args.output, graph); !s.ok()) {
     return ReportError(s.error());
@@ -112,16 +114,19 @@ int RunOptimize(const OptimizeArgs& args, AppContext& context) {
                           {"sgd_iterations", report.sgd_iterations},
                           {"ls_iterations", report.ls_iterations},
                           {"converged", report.converged},
-                          {"seconds", report.seconds}};
+                          {"seconds", report.seconds},
+                          {"cpu_seconds", report.cpu_seconds}};
     if (args.verbose) {
       out["history"] = history;
     }
     std::cout << out.dump(2) << "\n";
   } else {
-    std::printf("chi2_final=%.10g iterations=%d (sgd %d, %s %d) seconds=%.6f components=%d\n",
-                report.chi2_final, report.iterations, report.sgd_iterations,
-                report.method == "lm" ? "lm" : "gn", report.ls_iterations, report.seconds,
-                report.components);
+    std::printf(
+        "chi2_final=%.10g iterations=%d (sgd %d, %s %d) seconds=%.6f cpu_seconds=%.6f "
+        "components=%d\n",
+        report.chi2_final, report.iterations, report.sgd_iterations,
+        report.method == "lm" ? "lm" : "gn", report.ls_iterations, report.seconds,
+        report.cpu_seconds, report.components);
   }
   return kExitOk;
 }
@@ -142,7 +147,8 @@ RunFunction SetupOptimize(CLI::App& sub, AppContext& /*context*/) {
                  "file, or odometry")
       ->check(CLI::IsMember({"auto", "file", "odometry"}));
   sub.add_option("--sgd-tree", args->sgd_tree, "SGD spanning tree: bfs, chain or toro");
-  sub.add_option("--sgd-weights", args->sgd_weights, "SGD information rotation: g2o or toro");
+  sub.add_option("--sgd-variant", args->sgd_variant,
+                 "SGD update: g2o (exact g2o error) or toro (TORO 2-D as published)");
   sub.add_option("--robust-kernel", args->robust_kernel, "GN/LM kernel: none, huber, cauchy");
   sub.add_option("--robust-width", args->robust_width, "Kernel width [sqrt(chi2)]");
   sub.add_flag("--json", args->json, "Print one JSON object");

@@ -12,7 +12,6 @@
 #include <memory>
 #include <optional>
 
-#include "command.hpp"
 #include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/carmen_writer.hpp"
 #include "gridslam/io/map_io.hpp"
@@ -21,6 +20,8 @@
 #include "gridslam/io/simulation_io.hpp"
 #include "gridslam/io/trajectory_io.hpp"
 #include "gridslam/simulation/simulator.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -75,8 +76,8 @@ Status WriteRobot(const fs::path& dir, int index, const simulation::RobotRun& ru
   writer_options.accuracy = options.laser.range_noise;
   const Time start = run.odometry.front().time;
   io::CarmenWriter writer((dir / (stem + ".clf")).string(), writer_options, start);
-  writer.Comment("gridslam simulate: world " + options.world + ", robot " +
-                 std::to_string(index) + " of " + std::to_string(options.robots) + ", seed " +
+  writer.Comment("gridslam simulate: world " + options.world + ", robot " + std::to_string(index) +
+                 " of " + std::to_string(options.robots) + ", seed " +
                  std::to_string(options.seed) + "; ground truth in " + stem + ".gt.txt");
   writer.LaserOffsetParams(run.frames.front().T_base_laser, start);
   std::size_t f = 0;
@@ -109,9 +110,8 @@ Status WriteMultiRobotFiles(const fs::path& dir, const simulation::SimulationRes
   }
   std::sort(index.begin(), index.end(),
             [](const auto& a, const auto& b) { return a.time < b.time; });
-  std::sort(within.begin(), within.end(), [](const auto& a, const auto& b) {
-    return a.t1 != b.t1 ? a.t1 < b.t1 : a.t2 < b.t2;
-  });
+  std::sort(within.begin(), within.end(),
+            [](const auto& a, const auto& b) { return a.t1 != b.t1 ? a.t1 < b.t1 : a.t2 < b.t2; });
   GRIDSLAM_RETURN_IF_ERROR(io::WriteScanIndex((dir / "index.txt").string(), index));
   GRIDSLAM_RETURN_IF_ERROR(io::WriteRelations((dir / "within.relations").string(), within));
   return io::WriteRelations((dir / "between.relations").string(), result.between);
@@ -152,8 +152,8 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
-    return ReportError(RuntimeError("cannot create output folder " + args.output + ": " +
-                                    ec.message()));
+    return ReportError(
+        RuntimeError("cannot create output folder " + args.output + ": " + ec.message()));
   }
   std::vector<std::vector<Eigen::Vector2d>> paths;
   for (std::size_t i = 0; i < result.value().robots.size(); ++i) {
@@ -171,9 +171,9 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
        {options.robots > 1 ? WriteMultiRobotFiles(dir, result.value()) : Status::Ok(),
         io::WriteMap((dir / "world.yaml").string(), "world.png", truth),
         io::WriteMapPicture((dir / "overview.png").string(), truth, paths),
-        io::WriteFileAtomically((dir / "config.yaml").string(),
-                                "# gridslam effective configuration\n" +
-                                    io::OptionsToYaml(context.options))}) {
+        io::WriteFileAtomically(
+            (dir / "config.yaml").string(),
+            "# gridslam effective configuration\n" + io::OptionsToYaml(context.options))}) {
     if (!s.ok()) {
       return ReportError(s.error());
     }
@@ -186,8 +186,8 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
               options.robots > 1 ? "s" : "", options.seed);
   for (std::size_t i = 0; i < result.value().robots.size(); ++i) {
     const simulation::RobotRun& run = result.value().robots[i];
-    std::printf("  robot %zu: %zu scans, %.1f s, %.1f m, %zu relations, min clearance %.2f m\n",
-                i, run.frames.size(), run.duration, run.distance, run.relations.size(),
+    std::printf("  robot %zu: %zu scans, %.1f s, %.1f m, %zu relations, min clearance %.2f m\n", i,
+                run.frames.size(), run.duration, run.distance, run.relations.size(),
                 run.min_clearance);
   }
   if (options.robots > 1) {

@@ -23,7 +23,8 @@ using gridslam::features::SurfOptions;
 
 void DetectAndDescribe(benchmark::State& state, const cv::Ptr<cv::Feature2D>& detector) {
   cv::setNumThreads(1);  // single-threaded like the project's SURF, for a fair comparison
-  const cv::Mat image = gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1);
+  const cv::Mat image =
+      gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   for (auto _ : state) {
@@ -71,7 +72,8 @@ void BM_DescribeKeyMap(benchmark::State& state) {
 
 // The stages alone.
 void BM_IntegralImage(benchmark::State& state) {
-  const cv::Mat image = gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1);
+  const cv::Mat image =
+      gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1);
   gridslam::features::IntegralImage integral;
   for (auto _ : state) {
     integral.Compute(image);
@@ -114,9 +116,18 @@ BENCHMARK(BM_Surf64)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_USurf64)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Surf128)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DescribeKeyMap)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_OpenCv, sift, std::string("sift"))->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_OpenCv, orb, std::string("orb"))->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_OpenCv, akaze, std::string("akaze"))->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OpenCv, sift, std::string("sift"))
+    ->Arg(300)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OpenCv, orb, std::string("orb"))
+    ->Arg(300)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OpenCv, akaze, std::string("akaze"))
+    ->Arg(300)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IntegralImage)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastHessian)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OrientationAndDescriptor)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);

@@ -87,9 +87,19 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
   // Column pass with two linear scans (the input is binary): vertical distance to the nearest
   // source of the column, kept as a squared value in `g` and its row in `source_row`.
   constexpr int kFar = 1 << 28;
-  std::vector<int32_t> last(w, -kFar);
-  std::vector<int32_t> source_row(num_cells);
-  std::vector<float> g(num_cells);
+  // Scratch buffers reused across calls (per thread): small regions are updated often.
+  thread_local std::vector<int32_t> last;
+  thread_local std::vector<int32_t> source_row;
+  thread_local std::vector<float> g;
+  thread_local std::vector<int32_t> v;
+  thread_local std::vector<float> z;
+  thread_local std::vector<int32_t> arg;
+  last.assign(w, -kFar);
+  source_row.resize(num_cells);
+  g.resize(num_cells);
+  v.resize(w);
+  z.resize(w + 1);
+  arg.resize(w);
   for (int j = 0; j < height; ++j) {
     const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
     int32_t* row = source_row.data() + static_cast<std::size_t>(j) * w;
@@ -116,9 +126,6 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
   }
 
   // Row pass: 1-D lower envelope on every row of the column result.
-  std::vector<int32_t> v(w);
-  std::vector<float> z(w + 1);
-  std::vector<int32_t> arg(w);
   for (int j = 0; j < height; ++j) {
     const std::size_t offset = static_cast<std::size_t>(j) * w;
     float* d = out.squared.data() + offset;

@@ -11,13 +11,13 @@ namespace {
 std::optional<std::size_t> Lookup(const std::vector<StampedPose>& trajectory,
                                   const std::vector<std::size_t>& order, Time t,
                                   Duration tolerance) {
-  auto it = std::lower_bound(order.begin(), order.end(), t, [&](std::size_t i, Time value) {
-    return trajectory[i].time < value;
-  });
+  auto it = std::lower_bound(order.begin(), order.end(), t,
+                             [&](std::size_t i, Time value) { return trajectory[i].time < value; });
   std::optional<std::size_t> best;
   Duration best_gap = Duration::max();
   auto consider = [&](std::vector<std::size_t>::const_iterator c) {
-    const Duration gap = trajectory[*c].time > t ? trajectory[*c].time - t : t - trajectory[*c].time;
+    const Duration gap =
+        trajectory[*c].time > t ? trajectory[*c].time - t : t - trajectory[*c].time;
     if (gap < best_gap) {
       best_gap = gap;
       best = *c;

@@ -35,14 +35,14 @@ struct RelationError {
 Pose2 RelationErrorPose(const Pose2& estimate, const Pose2& truth);
 
 struct RelationMetrics {
-  long total = 0;     ///< Relations given.
-  long filtered = 0;  ///< Excluded by min_dt / max_dt.
-  long missing = 0;   ///< Not scored: a timestamp has no trajectory pose within the tolerance.
-  long used = 0;      ///< Scored (= errors.size()).
-  MeanStd translation;         ///< [m]
-  MeanStd translation_sq;      ///< [m²]
-  MeanStd rotation_deg;        ///< [deg]
-  MeanStd rotation_sq_deg2;    ///< [deg²]
+  long total = 0;          ///< Relations given.
+  long filtered = 0;       ///< Excluded by min_dt / max_dt.
+  long missing = 0;        ///< Not scored: a timestamp has no trajectory pose within the tolerance.
+  long used = 0;           ///< Scored (= errors.size()).
+  MeanStd translation;     ///< [m]
+  MeanStd translation_sq;  ///< [m²]
+  MeanStd rotation_deg;    ///< [deg]
+  MeanStd rotation_sq_deg2;           ///< [deg²]
   std::vector<RelationError> errors;  ///< One per scored relation, in input order.
 };
 

@@ -49,8 +49,8 @@ float Apply(const cv::Mat& image, const cv::Mat& kernel, int x, int y) {
 }
 
 TEST(FastHessianTest, FilterSizesAreThePapers) {
-  const int expected[4][4] = {{9, 15, 21, 27}, {15, 27, 39, 51}, {27, 51, 75, 99},
-                              {51, 99, 147, 195}};
+  const int expected[4][4] = {
+      {9, 15, 21, 27}, {15, 27, 39, 51}, {27, 51, 75, 99}, {51, 99, 147, 195}};
   for (int o = 0; o < 4; ++o) {
     for (int i = 0; i < 4; ++i) {
       EXPECT_EQ(FilterSize(o, i), expected[o][i]) << o << ", " << i;
@@ -174,8 +174,8 @@ TEST(FastHessianTest, NothingOnFlatTinyOrBelowThreshold) {
   SurfOptions options;
   EXPECT_TRUE(DetectFastHessian(IntegralImage(cv::Mat(100, 100, CV_8UC1, cv::Scalar(77))), options)
                   .empty());
-  EXPECT_TRUE(DetectFastHessian(IntegralImage(cv::Mat(8, 8, CV_8UC1, cv::Scalar(7))), options)
-                  .empty());
+  EXPECT_TRUE(
+      DetectFastHessian(IntegralImage(cv::Mat(8, 8, CV_8UC1, cv::Scalar(7))), options).empty());
   EXPECT_TRUE(DetectFastHessian(IntegralImage(), options).empty());
   const IntegralImage blob(GaussianBlob(120, 60, 60, 4.0, 100.0));
   options.hessian_threshold = 1.0;

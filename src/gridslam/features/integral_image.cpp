@@ -14,7 +14,7 @@ void IntegralImage::Compute(const cv::Mat& image) {
   height_ = image.rows;
   table_.assign(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1), 0);
   for (int y = 0; y < height_; ++y) {
-    const std::uint8_t* src = image.ptr<std::uint8_t>(y);
+    const auto* src = image.ptr<std::uint8_t>(y);
     const std::int32_t* above = Row(y);
     std::int32_t* out = table_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride();
     std::int32_t row_sum = 0;

@@ -15,12 +15,46 @@ struct Haar {
   float dy = 0.0F;
 };
 
+// floor(v) as an int without a libm call (no SSE4.1 rounding in the baseline x86-64 target).
+inline int FloorToInt(float v) {
+  const int t = static_cast<int>(v);
+  return static_cast<float>(t) > v ? t - 1 : t;
+}
+
+// atan2(y, x) within about 1e-5 rad: a minimax polynomial for atan on [0, 1] and the octant
+// fix-ups. Used only to order the orientation samples by angle.
+inline float FastAtan2(float y, float x) {
+  const float ax = std::abs(x);
+  const float ay = std::abs(y);
+  const float lo = std::min(ax, ay);
+  const float hi = std::max(ax, ay);
+  if (hi == 0.0F) {
+    return 0.0F;
+  }
+  const float z = lo / hi;
+  const float z2 = z * z;
+  float a =
+      z *
+      (0.99997726F +
+       z2 * (-0.33262347F +
+             z2 * (0.19354346F + z2 * (-0.11643287F + z2 * (0.05265332F + z2 * -0.01172120F)))));
+  constexpr auto kHalfPi = static_cast<float>(std::numbers::pi / 2.0);
+  constexpr auto kPi = static_cast<float>(std::numbers::pi);
+  if (ay > ax) {
+    a = kHalfPi - a;
+  }
+  if (x < 0.0F) {
+    a = kPi - a;
+  }
+  return y < 0.0F ? -a : a;
+}
+
 // Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy) (pixel centres at
 // integer coordinates, so the boundary left of pixel px lies at px − 0.5): dx = right − left,
 // dy = bottom − top, as box sums [intensity · px²].
 Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
-  const int px = static_cast<int>(std::floor(cx + 1.0F));
-  const int py = static_cast<int>(std::floor(cy + 1.0F));
+  const int px = FloorToInt(cx + 1.0F);
+  const int py = FloorToInt(cy + 1.0F);
   if (px - h >= 0 && py - h >= 0 && px + h <= ii.width() && py + h <= ii.height()) {
     const std::int32_t* top = ii.Row(py - h);
     const std::int32_t* mid = ii.Row(py);
@@ -83,15 +117,16 @@ const OrientationPattern& GetOrientationPattern() {
 // Descriptor samples: 20 × 20 points at ((k − 9.5)s, (m − 9.5)s) and their Gaussian weight,
 // σ = 3.3s (Bay et al. 2008, §4.2).
 constexpr int kGrid = 20;
-const std::array<float, kGrid * kGrid>& DescriptorWeights() {
-  static const std::array<float, kGrid * kGrid> weights = [] {
-    std::array<float, kGrid * kGrid> w{};
+using GridWeights = std::array<float, static_cast<std::size_t>(kGrid) * kGrid>;
+const GridWeights& DescriptorWeights() {
+  static const GridWeights weights = [] {
+    GridWeights w{};
     constexpr double kSigma = 3.3;
     for (int m = 0; m < kGrid; ++m) {
       for (int k = 0; k < kGrid; ++k) {
         const double u = k - 9.5;
         const double v = m - 9.5;
-        w[static_cast<std::size_t>(m * kGrid + k)] =
+        w[static_cast<std::size_t>(m) * kGrid + static_cast<std::size_t>(k)] =
             static_cast<float>(std::exp(-(u * u + v * v) / (2.0 * kSigma * kSigma)));
       }
     }
@@ -119,8 +154,8 @@ float AssignOrientation(const IntegralImage& integral, float x, float y, float s
     if (r.dx == 0.0F && r.dy == 0.0F) {
       continue;
     }
-    points[static_cast<std::size_t>(n++)] = {std::atan2(r.dy, r.dx), r.dx * p.weight,
-                                              r.dy * p.weight};
+    points[static_cast<std::size_t>(n++)] = {FastAtan2(r.dy, r.dx), r.dx * p.weight,
+                                             r.dy * p.weight};
   }
   if (n == 0) {
     return 0.0F;
@@ -159,7 +194,7 @@ float AssignOrientation(const IntegralImage& integral, float x, float y, float s
 void ComputeSurfDescriptor(const IntegralImage& integral, float x, float y, float scale,
                            float angle, bool extended, float* out) {
   GRIDSLAM_CHECK(scale > 0.0F) << "scale " << scale;
-  const std::array<float, kGrid * kGrid>& weights = DescriptorWeights();
+  const GridWeights& weights = DescriptorWeights();
   const int h = std::max(1, static_cast<int>(std::lround(scale)));  // side 2s
   const float co = std::cos(angle);
   const float si = std::sin(angle);
@@ -170,18 +205,18 @@ void ComputeSurfDescriptor(const IntegralImage& integral, float x, float y, floa
     for (int k = 0; k < kGrid; ++k) {
       const float u = (static_cast<float>(k) - 9.5F) * scale;
       const Haar r = HaarAt(integral, x + u * co - v * si, y + u * si + v * co, h);
-      const float w = weights[static_cast<std::size_t>(m * kGrid + k)];
+      const float w = weights[static_cast<std::size_t>(m) * kGrid + static_cast<std::size_t>(k)];
       const float rx = w * (r.dx * co + r.dy * si);   // along the orientation
       const float ry = w * (-r.dx * si + r.dy * co);  // perpendicular to it
       const int region = (m / 5) * 4 + k / 5;
       if (!extended) {
-        float* d = out + 4 * region;
+        float* d = out + 4 * static_cast<std::ptrdiff_t>(region);
         d[0] += rx;
         d[1] += ry;
         d[2] += std::abs(rx);
         d[3] += std::abs(ry);
       } else {
-        float* d = out + 8 * region;
+        float* d = out + 8 * static_cast<std::ptrdiff_t>(region);
         const int sx = ry < 0.0F ? 0 : 2;
         d[sx] += rx;
         d[sx + 1] += std::abs(rx);

@@ -42,7 +42,7 @@ cv::String SurfFeature2D::getDefaultName() const {
 
 void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
                                      std::vector<cv::KeyPoint>& keypoints,
-                                     cv::OutputArray descriptors, bool useProvidedKeypoints) {
+                                     cv::OutputArray descriptors, bool use_provided_keypoints) {
   const cv::Mat img = image.getMat();
   GRIDSLAM_CHECK(img.empty() || img.type() == CV_8UC1)
       << "SurfFeature2D needs a CV_8UC1 image, got type " << img.type();
@@ -54,7 +54,7 @@ void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     return;
   }
   const IntegralImage integral(img);
-  if (useProvidedKeypoints) {
+  if (use_provided_keypoints) {
     std::erase_if(keypoints,
                   [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
   } else {
@@ -74,9 +74,8 @@ void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
   for (cv::KeyPoint& kp : keypoints) {
     if (options_.upright) {
       kp.angle = -1.0F;
-    } else if (!useProvidedKeypoints || kp.angle < 0.0F) {
-      float deg =
-          AssignOrientation(integral, kp.pt.x, kp.pt.y, ScaleOfSize(kp.size)) * kRadToDeg;
+    } else if (!use_provided_keypoints || kp.angle < 0.0F) {
+      float deg = AssignOrientation(integral, kp.pt.x, kp.pt.y, ScaleOfSize(kp.size)) * kRadToDeg;
       deg = deg < 0.0F ? deg + 360.0F : deg;
       kp.angle = deg >= 360.0F ? 0.0F : deg;
     }

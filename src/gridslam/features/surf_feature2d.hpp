@@ -30,7 +30,7 @@ class SurfFeature2D : public cv::Feature2D {
   // NOLINTBEGIN(readability-identifier-naming): OpenCV's virtual interface.
   void detectAndCompute(cv::InputArray image, cv::InputArray mask,
                         std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
-                        bool useProvidedKeypoints) override;
+                        bool use_provided_keypoints) override;
   [[nodiscard]] int descriptorSize() const override;
   [[nodiscard]] int descriptorType() const override { return CV_32F; }
   [[nodiscard]] int defaultNorm() const override { return cv::NORM_L2; }

@@ -2,17 +2,19 @@
 // cv::line, cv::distanceTransform, clamped to 8 bit): keypoints repeat, descriptors match and the
 // rigid transform fitted to the matches recovers the rotation within 1° under rotations (30°, 90°,
 // 137°) and shifts, of the warped image and of the walls drawn anew.
-#include "gridslam/features/surf_feature2d.hpp"
-
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <ostream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "gridslam/features/fast_hessian.hpp"
+#include "gridslam/features/surf_feature2d.hpp"
 #include "gridslam/features/synthetic_keymap.hpp"
 
 namespace gridslam::features {
@@ -206,8 +208,9 @@ TEST_P(SurfInvarianceTest, RepeatableMatchingAndRotationRecovered) {
   SurfOptions options;
   const cv::Ptr<cv::Feature2D> surf = SurfFeature2D::Create(options);
   for (const std::uint32_t seed : {1U, 2U, 3U}) {
-    const ImagePair pair = c.rerender ? Rerendered(seed, c.deg, c.shift)
-                                      : Transformed(MakeSyntheticKeyMap(kSize, seed), c.deg, c.shift);
+    const ImagePair pair = c.rerender
+                               ? Rerendered(seed, c.deg, c.shift)
+                               : Transformed(MakeSyntheticKeyMap(kSize, seed), c.deg, c.shift);
     const Features fa = Describe(surf, pair.a);
     const Features fb = Describe(surf, pair.b);
     const double repeatability = Repeatability(fa, fb, pair.T_b_a, options);
@@ -215,11 +218,11 @@ TEST_P(SurfInvarianceTest, RepeatableMatchingAndRotationRecovered) {
     const double angle_error = std::remainder(m.fit.T.theta - pair.T_b_a.theta, 2.0 * kPi);
     const cv::Point2d centre(kSize / 2.0, kSize / 2.0);
     const double centre_error = cv::norm(m.fit.T * centre - pair.T_b_a * centre);
-    std::printf("%s %.0f deg seed %u: %zu/%zu keypoints, repeatability %.2f, mutual %d, correct %d, "
-                "inliers %d, angle error %.3f deg, centre error %.2f px\n",
-                c.rerender ? "drawn" : "warped", c.deg, seed, fa.keypoints.size(),
-                fb.keypoints.size(), repeatability, m.mutual, m.correct, m.fit.inliers,
-                angle_error * 180.0 / kPi, centre_error);
+    std::printf(
+        "%s %.0f deg seed %u: %zu/%zu keypoints, repeatability %.2f, mutual %d, correct %d, "
+        "inliers %d, angle error %.3f deg, centre error %.2f px\n",
+        c.rerender ? "drawn" : "warped", c.deg, seed, fa.keypoints.size(), fb.keypoints.size(),
+        repeatability, m.mutual, m.correct, m.fit.inliers, angle_error * 180.0 / kPi, centre_error);
     EXPECT_GE(fa.keypoints.size(), 40U) << seed;
     EXPECT_GE(repeatability, expect.repeatability) << seed;
     EXPECT_GE(m.correct, 20) << seed;
@@ -228,6 +231,19 @@ TEST_P(SurfInvarianceTest, RepeatableMatchingAndRotationRecovered) {
     EXPECT_LT(std::abs(angle_error), 1.0 * kPi / 180.0) << seed;
     EXPECT_LT(centre_error, 1.0) << seed;
   }
+}
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << (c.rerender ? "drawn " : "warped ") << c.deg << " deg, shift " << c.shift;
+}
+void PrintTo(const Expect& e, std::ostream* os) {
+  *os << "repeatability >= " << e.repeatability << ", precision >= " << e.precision;
+}
+
+std::string CaseName(const ::testing::TestParamInfo<std::pair<Case, Expect>>& info) {
+  const Case& c = info.param.first;
+  return std::string(c.rerender ? "Drawn" : "Warped") + std::to_string(static_cast<int>(c.deg)) +
+         "Deg" + (c.shift == cv::Point2d() ? "" : "Shift" + std::to_string(info.index));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -240,7 +256,8 @@ INSTANTIATE_TEST_SUITE_P(
                       std::pair{Case{12.0, {5.0, 1.5}}, Expect{0.7, 0.75}},
                       std::pair{Case{30.0, {}, true}, Expect{0.55, 0.55}},
                       std::pair{Case{137.0, {2.0, -3.0}, true}, Expect{0.55, 0.55}},
-                      std::pair{Case{0.0, {2.5, 1.5}, true}, Expect{0.7, 0.8}}));
+                      std::pair{Case{0.0, {2.5, 1.5}, true}, Expect{0.7, 0.8}}),
+    CaseName);
 
 // U-SURF: the same keypoints without orientation; its descriptors match under shifts but, not
 // being rotation invariant, not under a quarter turn. SURF-128 matches under rotation too.

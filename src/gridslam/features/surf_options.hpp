@@ -1,11 +1,11 @@
-// Options of the project's SURF detector and descriptor (Bay, Ess, Tuytelaars, Van Gool, "Speeded-Up
-// Robust Features (SURF)", CVIU 110(3), 2008; reconstruction.md §2; DESIGN.md §1.4). The scale space
-// is the paper's: octave o (0-based) holds the box filters of size L = 3·(2^(o+1)·(i+1) + 1),
-// i = 0 .. layers_per_octave−1 (9-15-21-27 / 15-27-39-51 / 27-51-75-99 / 51-99-147-195), sampled
-// every initial_step·2^o pixels. Hessian responses are normalised by the filter area L² with the
-// image intensities scaled to [0, 1], as OpenSURF does, so hessian_threshold has OpenSURF's units
-// (OpenSURF's default is 0.0004). OpenCV normalises each lobe by its own area, so its threshold
-// (default 100 on 0–255 images) is not comparable.
+// Options of the project's SURF detector and descriptor (Bay, Ess, Tuytelaars, Van Gool,
+// "Speeded-Up Robust Features (SURF)", CVIU 110(3), 2008; reconstruction.md §2; DESIGN.md §1.4).
+// The scale space is the paper's: octave o (0-based) holds the box filters of size L =
+// 3·(2^(o+1)·(i+1) + 1), i = 0 .. layers_per_octave−1 (9-15-21-27 / 15-27-39-51 / 27-51-75-99 /
+// 51-99-147-195), sampled every initial_step·2^o pixels. Hessian responses are normalised by the
+// filter area L² with the image intensities scaled to [0, 1], as OpenSURF does, so
+// hessian_threshold has OpenSURF's units (OpenSURF's default is 0.0004). OpenCV normalises each
+// lobe by its own area, so its threshold (default 100 on 0–255 images) is not comparable.
 #pragma once
 
 #include "gridslam/common/options.hpp"
@@ -50,8 +50,8 @@ struct SurfOptions {
     GRIDSLAM_RETURN_IF_ERROR(Require(hessian_threshold >= 0.0, "surf.hessian_threshold >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(num_octaves >= 1 && num_octaves <= 6, "surf.num_octaves in [1, 6]"));
-    GRIDSLAM_RETURN_IF_ERROR(
-        Require(layers_per_octave >= 3 && layers_per_octave <= 8, "surf.layers_per_octave in [3, 8]"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(layers_per_octave >= 3 && layers_per_octave <= 8,
+                                     "surf.layers_per_octave in [3, 8]"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(initial_step >= 1 && initial_step <= 4, "surf.initial_step in [1, 4]"));
     GRIDSLAM_RETURN_IF_ERROR(Require(interpolation_steps >= 1 && interpolation_steps <= 10,

@@ -20,6 +20,7 @@ void AddWallWithDoors(std::vector<cv::Vec4f>& walls, cv::Point2f a, cv::Point2f 
     return;
   }
   std::vector<float> cuts;
+  cuts.reserve(static_cast<std::size_t>(doors));
   std::uniform_real_distribution<float> where(door, length - 2.0F * door);
   for (int i = 0; i < doors; ++i) {
     cuts.push_back(where(rng));

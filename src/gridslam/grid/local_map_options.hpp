@@ -8,10 +8,13 @@ namespace gridslam {
 
 struct LocalMapOptions {
   double resolution = 0.05;          ///< Cell side [m].
-  double size = 15.0;                ///< Window side [m]; the cell count is made odd.
+  /// Window side [m]; the cell count is made odd. Key maps are its central keymap.size metres;
+  /// a window larger than the key maps gives the scan matcher the far returns that hold the
+  /// heading (docs/front_end.md).
+  double size = 20.0;
   double shift_distance = 1.0;       ///< Recentre when the robot is this far from the centre [m].
   double hit_probability = 0.7;      ///< Inverse sensor model at a beam's end cell.
-  double miss_probability = 0.4;     ///< Inverse sensor model along the beam.
+  double miss_probability = 0.45;    ///< Inverse sensor model along the beam.
   double min_probability = 0.12;     ///< Clamp (keeps the map able to change back).
   double max_probability = 0.97;     ///< Clamp.
   double occupied_probability = 0.6;  ///< Cells above are obstacles (matching, distance transform).
@@ -26,7 +29,8 @@ struct LocalMapOptions {
   template <class V>
   void Visit(V& v) {
     v("resolution", resolution, "Cell side [m]");
-    v("size", size, "Side of the rolling window [m] (12-15 m; the cell count is made odd)");
+    v("size", size,
+      "Side of the rolling window [m] (the cell count is made odd); key maps are its centre");
     v("shift_distance", shift_distance,
       "The window is shifted (in whole cells) when the robot is this far from its centre [m]");
     v("hit_probability", hit_probability, "Occupancy probability of a beam's end cell");

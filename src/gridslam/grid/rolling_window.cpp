@@ -40,8 +40,9 @@ Grid2D<T> Shifted(const Grid2D<T>& grid, int di, int dj, const T& fill) {
 
 }  // namespace
 
-RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom)
-    : options_(options) {
+RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom,
+                             bool track_surfaces)
+    : options_(options), track_surfaces_(track_surfaces) {
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
   hit_ = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
   miss_ = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
@@ -56,7 +57,9 @@ RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector
   const MapLimits limits(res, origin, n, n);
   log_odds_ = Grid2D<float>(limits, kUnknownLogOdds);
   obstacles_ = Grid2D<std::uint8_t>(limits, 0);
-  surfaces_ = Grid2D<CellSurface>(limits, CellSurface{});
+  if (track_surfaces_) {
+    surfaces_ = Grid2D<CellSurface>(limits, CellSurface{});
+  }
   stamps_.assign(static_cast<std::size_t>(limits.NumCells()), 0);
 }
 
@@ -85,7 +88,9 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   }
   log_odds_ = Shifted(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
   obstacles_ = Shifted(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
-  surfaces_ = Shifted(surfaces_, shift.x(), shift.y(), CellSurface{});
+  if (track_surfaces_) {
+    surfaces_ = Shifted(surfaces_, shift.x(), shift.y(), CellSurface{});
+  }
   std::fill(stamps_.begin(), stamps_.end(), 0U);
   stamp_ = 0;
   num_obstacles_ = std::count(obstacles_.Cells().begin(), obstacles_.Cells().end(), 1);
@@ -131,7 +136,9 @@ void RollingWindow::ApplyMiss(std::size_t index) {
   if (obstacle != 0 && l <= occupied_) {
     obstacle = 0;
     --num_obstacles_;
-    surfaces_.data()[index] = CellSurface{};
+    if (track_surfaces_) {
+      if (!getenv("FE_KEEP")) surfaces_.data()[index] = CellSurface{};
+    }
     MarkChanged(index);
   }
 }
@@ -184,15 +191,15 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
       stamps_[index] = stamp_;
       ApplyHit(index);
     }
+    if (!track_surfaces_) {
+      continue;
+    }
     CellSurface& s = surfaces_.data()[index];
     s.hits = std::min<std::uint16_t>(static_cast<std::uint16_t>(s.hits + 1), memory);
     const float a = 1.0F / static_cast<float>(s.hits);
     const Eigen::Vector2f local = (p - limits.CellCenter(cell)).cast<float>();
-    static const bool kNoMean = getenv("FE_NOMEAN") != nullptr;  // DEBUG
-    if (!kNoMean) {
     s.mean_x += a * (local.x() - s.mean_x);
     s.mean_y += a * (local.y() - s.mean_y);
-    }
     const Eigen::Vector2f n = (R * scan.normals[k]).cast<float>();
     const float q = scan.normal_quality[k];
     s.txx += a * (q * n.x() * n.x() - s.txx);
@@ -231,12 +238,20 @@ void RollingWindow::ClearChanges() {
   changes_overflow_ = false;
 }
 
-Grid2D<float> RollingWindow::SnapshotInCentreFrame() const {
+Grid2D<float> RollingWindow::SnapshotInCentreFrame(int num_cells) const {
   const MapLimits& limits = Limits();
-  Grid2D<float> out(MapLimits(limits.Resolution(), limits.Origin() - Centre(), limits.Width(),
-                              limits.Height()),
-                    kUnknownLogOdds);
-  out.Cells() = log_odds_.Cells();
+  const int w = limits.Width();
+  const int h = limits.Height();
+  const int cw = num_cells > 0 && num_cells < w ? num_cells : w;
+  const int ch = num_cells > 0 && num_cells < h ? num_cells : h;
+  // Same centre cell: the crop starts (w - cw) / 2 cells in (both odd, so the offset is whole).
+  const int i0 = w / 2 - cw / 2;
+  const int j0 = h / 2 - ch / 2;
+  const Eigen::Vector2d origin = limits.Origin() + Eigen::Vector2d(i0, j0) * limits.Resolution();
+  Grid2D<float> out(MapLimits(limits.Resolution(), origin - Centre(), cw, ch), kUnknownLogOdds);
+  for (int j = 0; j < ch; ++j) {
+    std::copy(&log_odds_(i0, j0 + j), &log_odds_(i0, j0 + j) + cw, &out(0, j));
+  }
   return out;
 }
 

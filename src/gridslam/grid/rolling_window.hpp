@@ -39,8 +39,11 @@ struct CellSurface {
 
 class RollingWindow {
  public:
-  /// An unknown window centred on the cell containing `centre_odom`.
-  RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom);
+  /// An unknown window centred on the cell containing `centre_odom`. Without `track_surfaces`
+  /// the per-cell mean points and normals are not kept (Surfaces() is empty, MeanPoint() must
+  /// not be called).
+  RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom,
+                bool track_surfaces = true);
 
   [[nodiscard]] const LocalMapOptions& Options() const { return options_; }
   /// Geometry in the odometry frame; the origin changes only in whole cells.
@@ -51,6 +54,7 @@ class RollingWindow {
   /// 1 where the cell is an obstacle (probability > occupied_probability), else 0.
   [[nodiscard]] const Grid2D<std::uint8_t>& Obstacles() const { return obstacles_; }
   [[nodiscard]] const Grid2D<CellSurface>& Surfaces() const { return surfaces_; }
+  [[nodiscard]] bool TracksSurfaces() const { return track_surfaces_; }
   /// Mean hit point of cell `index` (linear) in the odometry frame [m].
   [[nodiscard]] Eigen::Vector2d MeanPoint(std::int32_t index) const;
   [[nodiscard]] long NumObstacles() const { return num_obstacles_; }
@@ -71,8 +75,9 @@ class RollingWindow {
   [[nodiscard]] bool ChangesOverflow() const { return changes_overflow_; }
   void ClearChanges();
 
-  /// The log-odds grid with MapLimits in the frame centred on Centre() (yaw 0).
-  [[nodiscard]] Grid2D<float> SnapshotInCentreFrame() const;
+  /// The central `num_cells` x `num_cells` part (odd; 0 or more than the window = all of it) of
+  /// the log-odds grid, with MapLimits in the frame centred on Centre() (yaw 0).
+  [[nodiscard]] Grid2D<float> SnapshotInCentreFrame(int num_cells = 0) const;
 
  private:
   void ApplyHit(std::size_t index);
@@ -81,6 +86,7 @@ class RollingWindow {
   void TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to, bool to_is_hit);
 
   LocalMapOptions options_;
+  bool track_surfaces_ = true;
   float hit_ = 0.0F;
   float miss_ = 0.0F;
   float min_ = 0.0F;

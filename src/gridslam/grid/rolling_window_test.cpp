@@ -34,6 +34,7 @@ LocalMapOptions SmallWindow() {
 
 TEST(LocalMapOptions, WindowHasAnOddNumberOfCells) {
   LocalMapOptions options;
+  options.size = 15.0;
   EXPECT_EQ(options.NumCells(), 301);
   options.size = 12.0;
   EXPECT_EQ(options.NumCells(), 241);

@@ -10,8 +10,8 @@ namespace gridslam::io {
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents) {
   std::random_device device;
-  const std::string temp = path + ".tmp" + std::to_string(::getpid()) + "_" +
-                           std::to_string(device() % 1000000U);
+  const std::string temp =
+      path + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(device() % 1000000U);
   std::FILE* f = std::fopen(temp.c_str(), "wb");
   if (f == nullptr) {
     return RuntimeError("cannot write '" + path + "' (cannot create '" + temp + "')");

@@ -2,6 +2,8 @@
 // and angles; relation timestamps match scan timestamps exactly; intel's timestamp repair lowers
 // the odometry error on short relations.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -120,9 +122,28 @@ TEST(CarmenIntegration, Fr101FlaserWithParamOffset) {
   for (const Frame& f : frames) {
     ASSERT_TRUE(IsApprox(f.T_base_laser, Pose2(-0.04, 0.0, 0.0)));
   }
-  // Without the PARAM lines the two FLASER poses give the same mounting.
-  const Frame& f = frames[100];
-  EXPECT_GT(f.scan.CountHits(), 100U);
+  EXPECT_GT(frames[100].scan.CountHits(), 100U);
+  // Without the PARAM lines, each FLASER's two poses give the same mounting.
+  const auto dir = testing::MakeTempDir("fr101");
+  const std::string copy = (dir / "no_param.log").string();
+  {
+    std::ifstream in(Log("fr101.carmen.log"));
+    std::ofstream out(copy);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("PARAM", 0) != 0) {
+        out << line << "\n";
+      }
+    }
+  }
+  auto derived = ReadCarmenLog(copy, {});
+  ASSERT_TRUE(derived.ok());
+  ASSERT_EQ(derived.value().size(), frames.size());
+  for (const Frame& g : derived.value()) {
+    ASSERT_TRUE(IsApprox(g.T_base_laser, Pose2(-0.04, 0.0, 0.0), 2e-5, 1e-5))
+        << g.T_base_laser.x() << " " << g.T_base_laser.y() << " " << g.T_base_laser.theta();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

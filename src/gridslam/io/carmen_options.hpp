@@ -47,8 +47,8 @@ struct CarmenOptions {
     GRIDSLAM_RETURN_IF_ERROR(Require(max_usable_range > 0.0, "log.max_usable_range > 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(laser_offset.empty() || laser_offset.size() == 3,
                                      "log.laser_offset has 0 or 3 values"));
-    GRIDSLAM_RETURN_IF_ERROR(Require(flaser_angle_increment >= 0.0,
-                                     "log.flaser_angle_increment >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(flaser_angle_increment >= 0.0, "log.flaser_angle_increment >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(max_lookahead > 0.0, "log.max_lookahead > 0"));
     return Status::Ok();
   }

@@ -15,12 +15,12 @@ namespace gridslam::io {
 namespace internal {
 
 namespace {
-constexpr std::size_t kRepairLag = 32;            // stream entries kept for timestamp repair
-constexpr std::size_t kMaxPendingScans = 4096;    // hard bound of the look-ahead buffer
+constexpr std::size_t kRepairLag = 32;          // stream entries kept for timestamp repair
+constexpr std::size_t kMaxPendingScans = 4096;  // hard bound of the look-ahead buffer
 constexpr std::size_t kMaxOdometrySamples = 65536;
 constexpr std::size_t kMaxTruePosSamples = 256;
-constexpr double kOdometryKeep = 1.0;             // odometry kept before the last scan [s]
-constexpr double kTruePosTolerance = 0.25;        // TRUEPOS attached within this of a scan [s]
+constexpr double kOdometryKeep = 1.0;       // odometry kept before the last scan [s]
+constexpr double kTruePosTolerance = 0.25;  // TRUEPOS attached within this of a scan [s]
 }  // namespace
 
 struct TimedPose {
@@ -57,15 +57,16 @@ struct CarmenState {
 
   TimestampRepairer repair{kRepairLag};  // ODOM and laser lines, in file order
   std::deque<std::pair<std::uint64_t, TimedPose>> odom_waiting;  // ODOM awaiting repair
-  std::deque<PendingScan> scans;                              // file order
-  std::deque<TimedPose> odometry;                             // sorted by corrected time
-  std::deque<TimedPose> truepos;                              // recent TRUEPOS lines
+  std::deque<PendingScan> scans;                                 // file order
+  std::deque<TimedPose> odometry;                                // sorted by corrected time
+  std::deque<TimedPose> truepos;                                 // recent TRUEPOS lines
   std::optional<Time> newest_time;  // latest printed time read (look-ahead bound)
   std::optional<Time> last_emitted;
 
   Result<std::optional<Frame>> Next();
   Status ReadOneLine();
   Status Handle(long line_number);
+  Status Dispatch(long line_number);
   Status HandleParam(long line_number);
   void Drain();
   std::optional<Frame> TryEmit();
@@ -140,8 +141,11 @@ Status CarmenState::HandleParam(long line_number) {
       const std::string_view v = message.param_value;
       auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
       if (ec != std::errc() || ptr != v.data() + v.size() || !std::isfinite(value)) {
-        return InvalidInput("PARAM " + std::string(message.param_name) + ": field 'param_value': "
-                            "cannot read '" + std::string(v) + "' as a number", path, line_number);
+        return InvalidInput("PARAM " + std::string(message.param_name) +
+                                ": field 'param_value': "
+                                "cannot read '" +
+                                std::string(v) + "' as a number",
+                            path, line_number);
       }
       ParamMounting& m = side == 0 ? front : rear;
       m.xyz[k] = value;
@@ -153,16 +157,22 @@ Status CarmenState::HandleParam(long line_number) {
 
 Status CarmenState::Handle(long line_number) {
   SplitFields(line, tokens);
-  const Status parsed = ParseCarmenMessage(tokens, options, path, line_number, message);
-  if (!parsed.ok()) {
+  Status status = ParseCarmenMessage(tokens, options, path, line_number, message);
+  if (status.ok()) {
+    status = Dispatch(line_number);
+  }
+  if (!status.ok()) {
     if (!options.lenient) {
-      return parsed;
+      return status;
     }
     if (++stats.skipped_malformed <= 5) {
-      GRIDSLAM_LOG_WARN("skipping malformed line: {}", parsed.error().ToString());
+      GRIDSLAM_LOG_WARN("skipping malformed line: {}", status.error().ToString());
     }
-    return Status::Ok();
   }
+  return Status::Ok();
+}
+
+Status CarmenState::Dispatch(long line_number) {
   switch (message.kind) {
     case CarmenKind::kComment:
       ++stats.comments;
@@ -254,8 +264,8 @@ std::optional<Frame> CarmenState::TryEmit() {
   const Time t = s.frame.corrected_time;
   if (s.needs_odometry) {
     const bool covered = !odometry.empty() && odometry.back().time >= t;
-    const bool waited_enough = newest_time && ToSeconds(*newest_time - t) > options.max_lookahead &&
-                               !repair.HasPending();
+    const bool waited_enough =
+        newest_time && ToSeconds(*newest_time - t) > options.max_lookahead && odom_waiting.empty();
     if (!covered && !eof && !waited_enough && scans.size() < kMaxPendingScans) {
       return std::nullopt;
     }
@@ -263,7 +273,8 @@ std::optional<Frame> CarmenState::TryEmit() {
   }
   if (!truepos.empty()) {
     const auto nearest = std::min_element(truepos.begin(), truepos.end(), [&](auto& a, auto& b) {
-      return std::abs(ToSeconds(a.time - s.frame.time)) < std::abs(ToSeconds(b.time - s.frame.time));
+      return std::abs(ToSeconds(a.time - s.frame.time)) <
+             std::abs(ToSeconds(b.time - s.frame.time));
     });
     if (std::abs(ToSeconds(nearest->time - s.frame.time)) <= kTruePosTolerance) {
       s.frame.T_world_base_true = nearest->pose;

@@ -23,14 +23,14 @@ namespace gridslam::io {
 
 /// Counts of what a reader saw, for messages and tests.
 struct CarmenStats {
-  long lines = 0;              ///< Lines read (all kinds).
-  long scans = 0;              ///< Frames delivered.
-  long odometry = 0;           ///< ODOM lines used.
-  long comments = 0;           ///< Empty lines and '#' comments.
-  long params = 0;             ///< PARAM lines.
-  long truepos = 0;            ///< TRUEPOS lines.
-  long skipped_unknown = 0;    ///< Lines of unknown message types (one warning per type).
-  long skipped_malformed = 0;  ///< Malformed lines skipped in lenient mode.
+  long lines = 0;                   ///< Lines read (all kinds).
+  long scans = 0;                   ///< Frames delivered.
+  long odometry = 0;                ///< ODOM lines used.
+  long comments = 0;                ///< Empty lines and '#' comments.
+  long params = 0;                  ///< PARAM lines.
+  long truepos = 0;                 ///< TRUEPOS lines.
+  long skipped_unknown = 0;         ///< Lines of unknown message types (one warning per type).
+  long skipped_malformed = 0;       ///< Malformed lines skipped in lenient mode.
   long skipped_bad_odometry = 0;    ///< ODOM lines with timestamp <= 0.
   long scans_without_odometry = 0;  ///< Pose-less scans outside the ODOM time span (clamped).
   long repaired_timestamps = 0;     ///< Lines whose corrected_time differs from the printed one.

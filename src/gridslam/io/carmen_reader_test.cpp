@@ -280,6 +280,30 @@ TEST(CarmenReader, StreamsWithBoundedLookAhead) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CarmenReader, ScansBeyondTheOdometryWaitOnlyMaxLookahead) {
+  // ODOM stops after 1 s while scans go on for 40 s: each scan is emitted, clamped to the last
+  // ODOM, once the log has moved max_lookahead (10 s) past it, not at the end of the file.
+  const auto dir = testing::MakeTempDir("carmen_lookahead");
+  const std::string path = (dir / "gap.clf").string();
+  {
+    std::ofstream out(path);
+    out << std::fixed;
+    out << "ODOM 0 0 0 0 0 0 100.000000 h 0\nODOM 1 0 0 0 0 0 101.000000 h 0\n";
+    for (int k = 0; k < 400; ++k) {
+      out << "RAWLASER1 0 -1.570796 3.141593 0.785398 81.90 0.01 0 2 1.00 1.00 0 "
+          << 101.05 + 0.1 * k << " h 0\n";
+    }
+  }
+  auto reader = CarmenReader::Open(path, {});
+  ASSERT_TRUE(reader.ok());
+  auto first = reader.value().Next();
+  ASSERT_TRUE(first.ok() && first.value().has_value());
+  EXPECT_NEAR(first.value()->T_odom_base.x(), 1.0, 1e-12);
+  EXPECT_LT(reader.value().Stats().lines, 150);
+  EXPECT_GT(reader.value().Stats().lines, 100);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CarmenReader, MissingFileIsNotFound) {
   auto r = CarmenReader::Open("/nonexistent/log.clf", {});
   ASSERT_FALSE(r.ok());

@@ -57,8 +57,9 @@ void AppendRanges(std::string& out, const LaserScan& scan) {
 void AppendGeometry(std::string& out, const LaserScan& scan, const CarmenWriterOptions& options) {
   out += std::to_string(options.laser_type);
   out += ' ';
-  const double fov =
-      scan.ranges.empty() ? 0.0 : static_cast<double>(scan.ranges.size() - 1) * scan.angle_increment;
+  const double fov = scan.ranges.empty()
+                         ? 0.0
+                         : static_cast<double>(scan.ranges.size() - 1) * scan.angle_increment;
   AppendF(out, "%f ", scan.angle_min);
   AppendF(out, "%f ", fov);
   AppendF(out, "%f ", scan.angle_increment);

@@ -21,17 +21,17 @@ enum class CarmenLaserMessage { kRawLaser1, kRobotLaser1, kFlaser };
 struct CarmenWriterOptions {
   std::string hostname = "gridslam";  ///< ipc_hostname of every line (one token).
   CarmenLaserMessage laser_message = CarmenLaserMessage::kRawLaser1;
-  int laser_type = 0;           ///< 0 SICK_LMS, 1 SICK_PLS, 2 HOKUYO_URG.
-  double accuracy = 0.01;       ///< The `accuracy` field (range sigma) [m].
-  bool write_truepos = false;   ///< A TRUEPOS line before each scan that has ground truth.
+  int laser_type = 0;          ///< 0 SICK_LMS, 1 SICK_PLS, 2 HOKUYO_URG.
+  double accuracy = 0.01;      ///< The `accuracy` field (range sigma) [m].
+  bool write_truepos = false;  ///< A TRUEPOS line before each scan that has ground truth.
 };
 
 /// One ODOM line's contents.
 struct CarmenOdometry {
   Time time;
-  Pose2 pose;        ///< T_odom_base.
-  double tv = 0.0;   ///< [m/s]
-  double rv = 0.0;   ///< [rad/s]
+  Pose2 pose;       ///< T_odom_base.
+  double tv = 0.0;  ///< [m/s]
+  double rv = 0.0;  ///< [rad/s]
   double accel = 0.0;
 };
 

@@ -26,8 +26,8 @@ Frame MakeFrame(const char* time, const Pose2& odom, float first_range) {
 
 TEST(CarmenWriter, LinesAreFormattedAsCarmenWritesThem) {
   const Time start = At("1000.000000");
-  EXPECT_EQ(FormatOdometryLine({At("1000.250000"), Pose2(1.25, -0.32, 0.785398), 0.3, 0.05},
-                               "host", start),
+  EXPECT_EQ(FormatOdometryLine({At("1000.250000"), Pose2(1.25, -0.32, 0.785398), 0.3, 0.05}, "host",
+                               start),
             "ODOM 1.250000 -0.320000 0.785398 0.300000 0.050000 0.000000 1000.250000 host "
             "0.250000\n");
   CarmenWriterOptions options;

@@ -45,8 +45,8 @@ Result<pose_graph::PoseGraph> ParseG2o(const std::string& text, const std::strin
       double v[3];
       GRIDSLAM_RETURN_IF_ERROR(
           internal::ParseNumbers(tokens, 2, 3, kVertexFields, file, line_number, v));
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]),
-                                                   line_number));
+      GRIDSLAM_RETURN_IF_ERROR(
+          assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]), line_number));
     } else if (tag == "EDGE_SE2") {
       if (tokens.size() < 3) {
         return InvalidInput("EDGE_SE2: missing vertex ids", file, line_number);
@@ -61,9 +61,8 @@ Result<pose_graph::PoseGraph> ParseG2o(const std::string& text, const std::strin
       Eigen::Matrix3d information;
       // Upper triangle, row-major, mirrored (g2o readInformationMatrix).
       information << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(),
-                                                 Pose2(v[0], v[1], v[2]), information,
-                                                 line_number));
+      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(), Pose2(v[0], v[1], v[2]),
+                                                 information, line_number));
     } else if (tag == "FIX") {
       if (tokens.size() < 2) {
         return InvalidInput("FIX: no vertex id", file, line_number);
@@ -120,7 +119,8 @@ Status WriteG2o(const std::string& path, const pose_graph::PoseGraph& graph) {
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -152,9 +152,10 @@ Result<GraphFormat> DetectGraphFormat(const std::string& path, const std::string
       return GraphFormat::kToro;
     }
   }
-  return InvalidInput("neither a g2o nor a TORO 2-D graph (no VERTEX_SE2/EDGE_SE2/VERTEX2/EDGE2 "
-                      "line, and the extension is not .g2o or .graph)",
-                      path);
+  return InvalidInput(
+      "neither a g2o nor a TORO 2-D graph (no VERTEX_SE2/EDGE_SE2/VERTEX2/EDGE2 "
+      "line, and the extension is not .g2o or .graph)",
+      path);
 }
 
 Result<pose_graph::PoseGraph> ReadPoseGraphFile(const std::string& path, GraphReadStats* stats) {

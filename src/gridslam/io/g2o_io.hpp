@@ -3,8 +3,8 @@
 // `EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33` (information upper triangle, row-major,
 // (x, y, theta) order), `FIX id...`, '#' comments. Other tags are skipped with one warning per tag.
 // Angles are normalized on read; numbers are written in the shortest form that reads back
-// exactly, so a write/read round trip is lossless. Also the format-agnostic entry points (g2o or TORO, chosen by extension
-// or content) used by `gridslam optimize`.
+// exactly, so a write/read round trip is lossless. Also the format-agnostic entry points (g2o or
+// TORO, chosen by extension or content) used by `gridslam optimize`.
 #pragma once
 
 #include <set>

@@ -83,7 +83,8 @@ Result<RawImage> ParsePgm(const std::string& text, const std::string& path) {
   image.width = static_cast<int>(values[0]);
   image.height = static_cast<int>(values[1]);
   const long maxval = values[2];
-  const std::size_t n = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  const std::size_t n =
+      static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.data.resize(n);
   auto scale = [maxval](long v) {
     return static_cast<std::uint8_t>(maxval == 255 ? v : (v * 255 + maxval / 2) / maxval);
@@ -204,8 +205,8 @@ Status WriteMapImage(const std::string& path, const OccupancyImage& map) {
   for (std::size_t k = 0; k < cells.size(); ++k) {
     cells[k] = TrinaryPixel(map.Cells()[k]);
   }
-  return WriteGrayRows(path, FlipRows(cells, map.Width(), map.Height()), map.Width(),
-                       map.Height(), map.Limits().Resolution());
+  return WriteGrayRows(path, FlipRows(cells, map.Width(), map.Height()), map.Width(), map.Height(),
+                       map.Limits().Resolution());
 }
 
 Status WriteGrayImage(const std::string& path, const Grid2D<std::uint8_t>& image) {
@@ -238,7 +239,7 @@ Status WriteMapPicture(const std::string& path, const OccupancyImage& map,
     }
   }
   // BGR: red, blue, green, orange, purple, teal.
-  const cv::Scalar colours[] = {{30, 30, 220}, {220, 90, 20}, {40, 160, 40},
+  const cv::Scalar colours[] = {{30, 30, 220}, {220, 90, 20},  {40, 160, 40},
                                 {0, 140, 255}, {160, 40, 160}, {160, 160, 0}};
   const double res = map.Limits().Resolution();
   const Eigen::Vector2d origin = map.Limits().Origin();
@@ -310,8 +311,8 @@ Result<OccupancyImage> ReadMap(const std::string& yaml_path) {
   double free_thresh = 0.0;
   try {
     const YAML::Node root = YAML::Load(text.value());
-    for (const char* key : {"image", "resolution", "origin", "negate", "occupied_thresh",
-                            "free_thresh"}) {
+    for (const char* key :
+         {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh"}) {
       if (!root[key]) {
         return InvalidInput(std::string("map YAML lacks '") + key + "'", yaml_path);
       }
@@ -330,8 +331,10 @@ Result<OccupancyImage> ReadMap(const std::string& yaml_path) {
   }
   if (!(resolution > 0.0) || origin.size() != 3 || (negate != 0 && negate != 1) ||
       (mode != "trinary" && mode != "scale" && mode != "raw")) {
-    return InvalidInput("map YAML needs resolution > 0, origin [x, y, yaw], negate 0 or 1 and "
-                        "mode trinary, scale or raw", yaml_path);
+    return InvalidInput(
+        "map YAML needs resolution > 0, origin [x, y, yaw], negate 0 or 1 and "
+        "mode trinary, scale or raw",
+        yaml_path);
   }
   if (origin[2] != 0.0) {
     return InvalidInput("rotated map origins (yaw != 0) are not supported", yaml_path);
@@ -371,7 +374,8 @@ Result<OccupancyImage> ReadMap(const std::string& yaml_path) {
       } else if (occ < free_thresh) {
         value = kFreeCell;
       } else if (mode == "scale" && alpha == 255) {
-        value = static_cast<int>(1.0 + 98.0 * (occ - free_thresh) / (occupied_thresh - free_thresh));
+        value =
+            static_cast<int>(1.0 + 98.0 * (occ - free_thresh) / (occupied_thresh - free_thresh));
       }
       map(col, image.height - 1 - row) = static_cast<signed char>(value);
     }

@@ -55,8 +55,8 @@ TEST(TimestampRepair, FixesUnpaddedRuns) {
 
 TEST(TimestampRepair, CorrectLogIsLeftAlone) {
   // A small fraction (4.012340) shows the times are padded: out-of-order lines stay as printed.
-  const std::vector<std::string> texts = {"3.900000", "4.500000", "4.012340", "4.600000",
-                                          "4.700000", "4.800000"};
+  const std::vector<std::string> texts = {"3.900000", "4.500000", "4.012340",
+                                          "4.600000", "4.700000", "4.800000"};
   const auto out = RunRepair(texts);
   for (std::size_t i = 0; i < texts.size(); ++i) {
     EXPECT_EQ(out[i], T(texts[i]));

@@ -46,8 +46,8 @@ Result<pose_graph::PoseGraph> ParseToro(const std::string& text, const std::stri
       double v[3];
       GRIDSLAM_RETURN_IF_ERROR(
           internal::ParseNumbers(tokens, 2, 3, kVertexFields, file, line_number, v));
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]),
-                                                   line_number));
+      GRIDSLAM_RETURN_IF_ERROR(
+          assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]), line_number));
     } else if (tag == "EDGE2" || tag == "EDGE") {
       if (tokens.size() < 3) {
         return InvalidInput(tag + ": missing vertex ids", file, line_number);
@@ -78,9 +78,8 @@ Result<pose_graph::PoseGraph> ParseToro(const std::string& text, const std::stri
         information = lu.inverse();
         information = 0.5 * (information + information.transpose()).eval();
       }
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(),
-                                                 Pose2(v[0], v[1], v[2]), information,
-                                                 line_number));
+      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(), Pose2(v[0], v[1], v[2]),
+                                                 information, line_number));
     } else {
       assembler.Skip(tag, line_number);  // EQUIV (node merging) and anything else.
     }
@@ -107,8 +106,8 @@ std::string FormatToro(const pose_graph::PoseGraph& graph) {
     const Eigen::Matrix3d& m = e.information;
     out += "EDGE2 " + std::to_string(e.from) + ' ' + std::to_string(e.to) + ' ' +
            Number(e.T_i_j.x()) + ' ' + Number(e.T_i_j.y()) + ' ' + Number(e.T_i_j.theta()) + ' ' +
-           Number(m(0, 0)) + ' ' + Number(m(0, 1)) + ' ' + Number(m(1, 1)) + ' ' +
-           Number(m(2, 2)) + ' ' + Number(m(0, 2)) + ' ' + Number(m(1, 2)) + '\n';
+           Number(m(0, 0)) + ' ' + Number(m(0, 1)) + ' ' + Number(m(1, 1)) + ' ' + Number(m(2, 2)) +
+           ' ' + Number(m(0, 2)) + ' ' + Number(m(1, 2)) + '\n';
   }
   return out;
 }

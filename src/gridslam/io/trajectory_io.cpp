@@ -79,8 +79,8 @@ Result<std::vector<StampedPose>> ReadTrajectory(const std::string& path) {
                           line_number);
     }
     double v[7] = {0, 0, 0, 0, 0, 0, 0};
-    static constexpr const char* kNames[2][7] = {
-        {"x", "y", "theta", "", "", "", ""}, {"x", "y", "z", "qx", "qy", "qz", "qw"}};
+    static constexpr const char* kNames[2][7] = {{"x", "y", "theta", "", "", "", ""},
+                                                 {"x", "y", "z", "qx", "qy", "qz", "qw"}};
     const bool tum = tokens.size() == 8;
     for (std::size_t k = 1; k < tokens.size(); ++k) {
       if (!internal::ParseDouble(tokens[k], v[k - 1]) || !std::isfinite(v[k - 1])) {
@@ -92,7 +92,8 @@ Result<std::vector<StampedPose>> ReadTrajectory(const std::string& path) {
     double theta = v[2];
     if (tum) {
       // Yaw of the quaternion (x, y, z, w) = (v[3], v[4], v[5], v[6]).
-      theta = std::atan2(2.0 * (v[6] * v[5] + v[3] * v[4]), 1.0 - 2.0 * (v[4] * v[4] + v[5] * v[5]));
+      theta =
+          std::atan2(2.0 * (v[6] * v[5] + v[3] * v[4]), 1.0 - 2.0 * (v[4] * v[4] + v[5] * v[5]));
     }
     poses.push_back({*time, Pose2(v[0], v[1], theta)});
   }

@@ -1,8 +1,16 @@
 #include "gridslam/keymap/key_map_builder.hpp"
 
+#include <cmath>
+
 namespace gridslam::keymap {
 
+int KeyMapOptions::NumCells(double resolution) const {
+  const auto n = static_cast<int>(std::lround(size / resolution));
+  return n % 2 == 0 ? n + 1 : n;
+}
+
 Status KeyMapOptions::Validate() const {
+  GRIDSLAM_RETURN_IF_ERROR(Require(size > 0.0, "keymap.size > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(keymap_distance > 0.0, "keymap.keymap_distance > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(keymap_period > 0.0, "keymap.keymap_period > 0"));
   return Status::Ok();
@@ -47,7 +55,8 @@ KeyMap KeyMapBuilder::Snapshot(const RollingWindow& window) {
   key.id = next_id_++;
   key.time = pending_.back().time;
   key.T_odom_key = Pose2(window.Centre(), 0.0);
-  key.log_odds = window.SnapshotInCentreFrame();
+  key.log_odds =
+      window.SnapshotInCentreFrame(options_.NumCells(window.Limits().Resolution()));
   const Pose2 T_key_odom = key.T_odom_key.Inverse();
   key.scans.reserve(pending_.size());
   for (Pending& p : pending_) {

@@ -15,18 +15,23 @@
 namespace gridslam::keymap {
 
 struct KeyMapOptions {
+  double size = 15.0;  ///< Side of a key map [m]: the centre of the window (cell count odd).
   double keymap_distance = 0.5;  ///< Window-origin travel that triggers a key map [m].
   double keymap_period = 20.0;   ///< Time that triggers a key map [s].
   bool keep_scans = true;        ///< Whether key maps keep the scans' ranges (for fusion).
 
   template <class V>
   void Visit(V& v) {
+    v("size", size,
+      "Side of a key map [m]: the central part of the (possibly larger) rolling window");
     v("keymap_distance", keymap_distance,
       "A key map is taken when the window origin moved more than this since the last one [m]");
     v("keymap_period", keymap_period, "... or when this much time passed [s]");
     v("keep_scans", keep_scans, "Key maps keep their scans' ranges (needed to re-insert scans)");
   }
   [[nodiscard]] Status Validate() const;
+  /// Cells along a key map's side at `resolution` [m] (odd).
+  [[nodiscard]] int NumCells(double resolution) const;
 };
 
 class KeyMapBuilder {

@@ -87,6 +87,35 @@ TEST(KeyMapBuilder, SnapshotsAfterThePeriodWhenStanding) {
   EXPECT_EQ(snapshots, 2);
 }
 
+TEST(KeyMapBuilder, KeyMapsAreTheCentreOfALargerWindow) {
+  LocalMapOptions map_options;
+  map_options.size = 8.0;
+  RollingWindow window(map_options, Eigen::Vector2d(3.0, -2.0));
+  Frame frame = MakeFrame(1.0, Pose2(3.0, -2.0, 0.4));
+  frame.scan.ranges.assign(181, 1.5F);  // inside the key map
+  window.InsertScan(frame.T_odom_base, ExtractScanPoints(frame.scan, frame.T_base_laser, 30.0));
+  KeyMapOptions options;
+  options.size = 4.0;
+  KeyMapBuilder builder(options);
+  builder.AddScan(frame, frame.T_odom_base);
+  const std::optional<KeyMap> key = builder.Finish(window);
+  ASSERT_TRUE(key);
+  EXPECT_EQ(key->log_odds.Width(), 81);
+  EXPECT_EQ(key->log_odds.Height(), 81);
+  EXPECT_NEAR(key->log_odds.Limits().Origin().x(), -0.5 * 81 * 0.05, 1e-9);
+  // Every cell of the key map equals the window cell at the same odometry-frame position.
+  int occupied = 0;
+  for (int j = 0; j < 81; ++j) {
+    for (int i = 0; i < 81; ++i) {
+      const Eigen::Vector2d p_odom =
+          key->T_odom_key * key->log_odds.Limits().CellCenter(Eigen::Array2i(i, j));
+      ASSERT_EQ(key->log_odds(i, j), window.LogOdds().at(window.Limits().CellIndex(p_odom)));
+      occupied += key->log_odds(i, j) > 0.0F ? 1 : 0;
+    }
+  }
+  EXPECT_GT(occupied, 10);
+}
+
 TEST(KeyMapImages, ClassifyCellsByProbability) {
   Grid2D<float> grid(MapLimits(0.05, Eigen::Vector2d::Zero(), 3, 1), 0.0F);
   grid(0, 0) = 2.0F;

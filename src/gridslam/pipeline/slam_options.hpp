@@ -4,11 +4,15 @@
 // a section here when a component lands.
 #pragma once
 
+#include "gridslam/benchmark/align_eval_options.hpp"
 #include "gridslam/common/options.hpp"
-#include "gridslam/features/surf_options.hpp"
+#include "gridslam/eval/eval_options.hpp"
+#include "gridslam/description/description_options.hpp"
+#include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/loop_closure/loop_closure_options.hpp"
+#include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/io/carmen_options.hpp"
 #include "gridslam/matching/align.hpp"
-#include "gridslam/eval/eval_options.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/simulation/simulation_options.hpp"
@@ -18,31 +22,44 @@ namespace gridslam {
 struct SlamOptions {
   io::CarmenOptions log;  ///< Reading CARMEN logs.
   scan_matching::FrontEndOptions front_end;  ///< Scan matching, local map, key maps.
-  features::SurfOptions surf;  ///< SURF key-map description.
+  description::DescriptionOptions description;  ///< Key-map description (DT + SURF).
   matching::AlignOptions matching;  ///< Key-map alignment (matching, RANSAC, verification).
   eval::EvalOptions eval;  ///< Benchmark relation metric.
   pose_graph::OptimizerOptions optimizer;  ///< Pose-graph optimization.
+  loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
+  pipeline::GraphOptions graph;  ///< Building and optimizing the key-map graph.
+  fusion::FusionOptions fusion;  ///< Global map fusion.
   simulation::SimulationOptions simulation;  ///< `gridslam simulate`.
+  benchmark::AlignEvalOptions align_eval;  ///< `gridslam align-eval` (DESIGN.md 3.2).
 
   template <class V>
   void Visit(V& v) {
     v.Section("log", log, "Reading CARMEN laser logs (FORMATS.md section 1)");
     v.Section("front_end", front_end,
               "Front end: local map, scan matching, key maps (DESIGN.md 1.2-1.3)");
-    v.Section("surf", surf, "SURF features of key maps (DESIGN.md 1.4; Bay et al. 2008)");
+    v.Section("description", description,
+              "Key-map description: distance transform + SURF (DESIGN.md 1.4)");
     v.Section("matching", matching, "Key-map alignment without prior (DESIGN.md section 1.5)");
     v.Section("eval", eval, "Benchmark relation metric (DESIGN.md section 3.1)");
     v.Section("optimizer", optimizer, "Pose-graph optimization (DESIGN.md section 1.7)");
+    v.Section("loop_closure", loop_closure, "Loop-closure search and gates (DESIGN.md 1.6)");
+    v.Section("graph", graph, "Key-map graph: edges, online and final optimization");
+    v.Section("fusion", fusion, "Global map fusion (DESIGN.md 1.8)");
     v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
+    v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(log.Validate());
     GRIDSLAM_RETURN_IF_ERROR(front_end.Validate());
-    GRIDSLAM_RETURN_IF_ERROR(surf.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(description.Validate());
     GRIDSLAM_RETURN_IF_ERROR(matching.Validate());
     GRIDSLAM_RETURN_IF_ERROR(eval.Validate());
     GRIDSLAM_RETURN_IF_ERROR(optimizer.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(loop_closure.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(graph.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(fusion.Validate());
     GRIDSLAM_RETURN_IF_ERROR(simulation.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(align_eval.Validate());
     return Status::Ok();
   }
 };

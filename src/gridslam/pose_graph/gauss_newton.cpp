@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 #include "gridslam/common/check.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
 #include "gridslam/pose_graph/internal/block_cholesky.hpp"
@@ -76,8 +75,7 @@ class NormalEquations {
     Eigen::Matrix3d information;
   };
 
-  static BlockCholesky Build(const PoseGraph& graph, const std::vector<int>& block,
-                             int num_blocks);
+  static BlockCholesky Build(const PoseGraph& graph, const std::vector<int>& block, int num_blocks);
 
   int num_blocks_ = 0;      // Declared before block_, which sets it.
   std::vector<int> block_;  ///< Per vertex index: variable block or -1.

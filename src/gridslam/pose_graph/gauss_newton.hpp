@@ -50,9 +50,9 @@ struct GaussNewtonOptions {
     GRIDSLAM_RETURN_IF_ERROR(Require(max_iterations >= 0, "optimizer.gn.max_iterations >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(relative_tolerance >= 0.0, "optimizer.gn.relative_tolerance >= 0"));
-    GRIDSLAM_RETURN_IF_ERROR(Require(
-        robust_kernel == "none" || robust_kernel == "huber" || robust_kernel == "cauchy",
-        "optimizer.gn.robust_kernel is none, huber or cauchy"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(robust_kernel == "none" || robust_kernel == "huber" || robust_kernel == "cauchy",
+                "optimizer.gn.robust_kernel is none, huber or cauchy"));
     GRIDSLAM_RETURN_IF_ERROR(Require(robust_width > 0.0, "optimizer.gn.robust_width > 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(lm_initial_lambda_factor > 0.0, "optimizer.gn.lm_initial_lambda_factor > 0"));
@@ -72,8 +72,8 @@ struct LeastSquaresIteration {
 struct LeastSquaresSummary {
   double chi2_initial = 0.0;
   double chi2_final = 0.0;
-  int iterations = 0;       ///< Linear solves that changed the estimate or were tried.
-  bool converged = false;   ///< The relative tolerance was met (not the iteration limit).
+  int iterations = 0;              ///< Linear solves that changed the estimate or were tried.
+  bool converged = false;          ///< The relative tolerance was met (not the iteration limit).
   bool numerical_failure = false;  ///< The factorization failed.
 };
 

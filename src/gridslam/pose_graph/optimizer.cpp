@@ -1,6 +1,7 @@
 #include "gridslam/pose_graph/optimizer.hpp"
 
 #include <chrono>
+#include <ctime>
 
 #include "gridslam/common/check.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
@@ -14,6 +15,7 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   OptimizationReport report;
@@ -24,9 +26,8 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   const bool use_ls = options.method != "sgd";
 
   if (use_sgd) {
-    const int n = options.method == "sgd"
-                      ? (iterations > 0 ? iterations : options.sgd_iterations)
-                      : options.warmup_iterations;
+    const int n = options.method == "sgd" ? (iterations > 0 ? iterations : options.sgd_iterations)
+                                          : options.warmup_iterations;
     SgdOptimizer sgd(graph, options.sgd);
     for (int it = 1; it <= n; ++it) {
       sgd.Iterate(1);
@@ -57,6 +58,7 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   report.iterations = report.sgd_iterations + report.ls_iterations;
   report.chi2_final = Chi2(graph);
   report.seconds = elapsed();
+  report.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return report;
 }
 

@@ -44,8 +44,8 @@ SgdOptimizer::SgdOptimizer(const PoseGraph& graph, SgdOptions options)
   }
   for (int k = 0; k < static_cast<int>(graph_.num_edges()); ++k) {
     const Edge& e = graph_.edge(k);
-    edges_.push_back(SgdEdge{graph_.FromIndex(k), graph_.ToIndex(k), e.T_i_j.ToVector(),
-                             e.information, -1, 0});
+    edges_.push_back(
+        SgdEdge{graph_.FromIndex(k), graph_.ToIndex(k), e.T_i_j.ToVector(), e.information, -1, 0});
   }
   Rebuild();
 }
@@ -127,8 +127,10 @@ void SgdOptimizer::AttachLeaf(int leaf, int parent, const Eigen::Vector3d& T_par
   age_[U(leaf)] = age_[U(parent)];
   attached_[U(leaf)] = true;
   attached_[U(parent)] = true;
-  // Parents come first in order_: move the leaf to the end.
-  order_.erase(std::find(order_.begin(), order_.end(), leaf));
+  // Parents come first in order_: move the leaf to the end (it was added recently: search from
+  // the back).
+  const auto it = std::find(order_.rbegin(), order_.rend(), leaf);
+  order_.erase(std::next(it).base());
   order_.push_back(leaf);
   graph_synced_ = false;
 }

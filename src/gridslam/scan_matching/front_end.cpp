@@ -43,7 +43,8 @@ Status FrontEndOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(insert_distance >= 0.0 && insert_angle >= 0.0 &&
                                        insert_period >= 0.0,
                                    "front_end insert thresholds >= 0"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_sigma_xy > 0.0 && odometry_sigma_theta > 0.0,
+  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_sigma_forward > 0.0 && odometry_sigma_lateral > 0.0 &&
+                                       odometry_sigma_theta > 0.0,
                                    "front_end odometry sigmas > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(odometry_drift_xy >= 0.0 && odometry_drift_theta >= 0.0,
                                    "front_end odometry drifts >= 0"));
@@ -63,14 +64,21 @@ FrontEnd::FrontEnd(const FrontEndOptions& options)
 FrontEnd::~FrontEnd() = default;
 
 Eigen::Matrix3d FrontEnd::PriorInformation(const Pose2& odometry_increment,
-                                           const Pose2& /*T_odom_base_predicted*/) const {
-  const double sigma_xy = options_.odometry_sigma_xy +
-                          options_.odometry_drift_xy * odometry_increment.translation().norm();
+                                           const Pose2& T_odom_base_predicted) const {
+  // Independent errors along and across the robot's heading, and in yaw, each a floor plus a
+  // part proportional to the motion; rotated into the odometry frame.
+  const double travelled = odometry_increment.translation().norm();
+  const double forward = options_.odometry_sigma_forward + options_.odometry_drift_xy * travelled;
+  const double lateral = options_.odometry_sigma_lateral + options_.odometry_drift_xy * travelled;
   const double sigma_theta = options_.odometry_sigma_theta +
                              options_.odometry_drift_theta * std::abs(odometry_increment.theta());
-  return Eigen::Vector3d(1.0 / (sigma_xy * sigma_xy), 1.0 / (sigma_xy * sigma_xy),
-                         1.0 / (sigma_theta * sigma_theta))
-      .asDiagonal();
+  const Eigen::Matrix2d R = T_odom_base_predicted.Rotation();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  information.topLeftCorner<2, 2>() =
+      R * Eigen::Vector2d(1.0 / (forward * forward), 1.0 / (lateral * lateral)).asDiagonal() *
+      R.transpose();
+  information(2, 2) = 1.0 / (sigma_theta * sigma_theta);
+  return information;
 }
 
 bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
@@ -92,7 +100,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   Pose2 pose = frame.T_odom_base;
   const bool first = window_ == nullptr;
   if (first) {
-    window_ = std::make_unique<RollingWindow>(options_.local_map, pose.translation());
+    window_ = std::make_unique<RollingWindow>(options_.local_map, pose.translation(),
+                                              options_.matcher.residual == "point_to_line");
     step.status = FrameStatus::kFirst;
   } else {
     const Pose2 increment = Between(last_odometry_, frame.T_odom_base);

@@ -19,10 +19,11 @@ struct FrontEndOptions {
   double insert_period = 5.0;     ///< ... or this much time passed since the last insertion [s].
   /// Odometry prior of the matcher: standard deviations of the predicted pose, a floor plus a
   /// part proportional to the motion since the previous scan.
-  double odometry_sigma_xy = 0.05;     ///< [m]
-  double odometry_sigma_theta = 0.05;  ///< [rad]
-  double odometry_drift_xy = 0.2;      ///< [m per m travelled]
-  double odometry_drift_theta = 0.2;   ///< [rad per rad turned]
+  double odometry_sigma_forward = 0.05;  ///< Along the robot's heading [m].
+  double odometry_sigma_lateral = 0.05;  ///< Sideways (a wheeled robot hardly slips) [m].
+  double odometry_sigma_theta = 0.05;    ///< [rad]
+  double odometry_drift_xy = 0.2;        ///< [m per m travelled]
+  double odometry_drift_theta = 0.2;     ///< [rad per rad turned]
   double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
   double max_correction_theta = 0.35;  ///< [rad]
 
@@ -35,7 +36,10 @@ struct FrontEndOptions {
     v("insert_distance", insert_distance, "Insert a scan after this much travel [m]");
     v("insert_angle", insert_angle, "... or this much rotation [rad]");
     v("insert_period", insert_period, "... or this much time [s]");
-    v("odometry_sigma_xy", odometry_sigma_xy, "Prior: position std of a prediction [m]");
+    v("odometry_sigma_forward", odometry_sigma_forward,
+      "Prior: std of a prediction along the robot's heading [m]");
+    v("odometry_sigma_lateral", odometry_sigma_lateral,
+      "Prior: std of a prediction across the robot's heading [m]");
     v("odometry_sigma_theta", odometry_sigma_theta, "Prior: yaw std of a prediction [rad]");
     v("odometry_drift_xy", odometry_drift_xy, "Prior: added position std per metre [m/m]");
     v("odometry_drift_theta", odometry_drift_theta, "Prior: added yaw std per radian [rad/rad]");

@@ -6,15 +6,15 @@
 namespace gridslam::scan_matching {
 namespace {
 
-constexpr int kTile = 16;  // side of the change-tracking tiles [cells]
-
 // Moves a row-major field by (di, dj) cells (new (i, j) = old (i + di, j + dj)); labels are
 // re-indexed and dropped (with their distance) when their obstacle left the grid.
-void ShiftField(distance_transform::SquaredDistanceField& field, int di, int dj) {
+void ShiftField(distance_transform::SquaredDistanceField& field, std::vector<float>& distance,
+                float max_distance, int di, int dj) {
   const int w = field.width;
   const int h = field.height;
   std::vector<float> squared(field.squared.size(), distance_transform::kInfinity);
   std::vector<std::int32_t> nearest(field.nearest.size(), -1);
+  std::vector<float> shifted_distance(distance.size(), max_distance);
   for (int j = 0; j < h; ++j) {
     const int sj = j + dj;
     if (sj < 0 || sj >= h) {
@@ -40,19 +40,34 @@ void ShiftField(distance_transform::SquaredDistanceField& field, int di, int dj)
                               static_cast<std::size_t>(i);
       squared[dst] = field.squared[src];
       nearest[dst] = lj * w + li;
+      shifted_distance[dst] = distance[src];
     }
   }
   field.squared.swap(squared);
   field.nearest.swap(nearest);
+  distance.swap(shifted_distance);
 }
 
 }  // namespace
 
+void MatchingField::SetLimits(const MapLimits& limits) {
+  limits_ = limits;
+  origin_x_ = limits.Origin().x();
+  origin_y_ = limits.Origin().y();
+  inv_resolution_ = 1.0 / limits.Resolution();
+}
+
 void MatchingField::Rebuild(const RollingWindow& window) {
-  limits_ = window.Limits();
+  SetLimits(window.Limits());
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
   distance_transform::SquaredEuclideanDistanceTransform(
       window.Obstacles().data(), limits_.Width(), limits_.Height(), field_, true, max_cells);
+  distance_.resize(field_.squared.size());
+  const auto res = static_cast<float>(limits_.Resolution());
+  const auto max_d = static_cast<float>(max_distance_);
+  for (std::size_t k = 0; k < distance_.size(); ++k) {
+    distance_[k] = std::min(max_d, std::sqrt(field_.squared[k]) * res);
+  }
   valid_ = true;
   ++num_rebuilds_;
 }
@@ -81,6 +96,8 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
   distance_transform::SquaredEuclideanDistanceTransform(scratch_sources_.data(), sw, sh,
                                                         scratch_field_, true, max_cells);
+  const auto res = static_cast<float>(limits_.Resolution());
+  const auto max_d = static_cast<float>(max_distance_);
   for (int j = j0; j < j1; ++j) {
     for (int i = i0; i < i1; ++i) {
       const std::size_t local = static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw) +
@@ -89,6 +106,7 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
                                  static_cast<std::size_t>(i);
       const std::int32_t label = scratch_field_.nearest[local];
       field_.squared[global] = scratch_field_.squared[local];
+      distance_[global] = std::min(max_d, std::sqrt(scratch_field_.squared[local]) * res);
       field_.nearest[global] = label < 0 ? -1 : (sj0 + label / sw) * w + (si0 + label % sw);
     }
   }
@@ -107,8 +125,8 @@ void MatchingField::Update(const RollingWindow& window) {
   }
   const int r = static_cast<int>(std::ceil(max_distance_ / limits.Resolution()));
   if ((shift != 0).any()) {
-    ShiftField(field_, shift.x(), shift.y());
-    limits_ = limits;
+    ShiftField(field_, distance_, static_cast<float>(max_distance_), shift.x(), shift.y());
+    SetLimits(limits);
     // Cells within r of an edge where obstacles left, and the cells that entered.
     if (shift.x() > 0) {
       UpdateRegion(window, 0, 0, r, h);
@@ -126,74 +144,68 @@ void MatchingField::Update(const RollingWindow& window) {
     }
   }
   const std::vector<std::int32_t>& changed = window.ChangedCells();
-  if (changed.empty()) {
-    return;
-  }
-  // Tiles holding changed cells; each run of dirty tiles along a tile row is recomputed with a
-  // margin of r cells (every cell whose truncated distance can have changed).
-  const int tiles_x = (w + kTile - 1) / kTile;
-  const int tiles_y = (h + kTile - 1) / kTile;
-  dirty_tiles_.assign(static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y), 0);
-  for (const std::int32_t index : changed) {
-    const int tx = (index % w) / kTile;
-    const int ty = (index / w) / kTile;
-    dirty_tiles_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x) +
-                 static_cast<std::size_t>(tx)] = 1;
-  }
-  const long num_dirty = std::count(dirty_tiles_.begin(), dirty_tiles_.end(), 1);
-  if (num_dirty * 3 > static_cast<long>(dirty_tiles_.size())) {
+  if (changed.size() > static_cast<std::size_t>(w) * static_cast<std::size_t>(h) / 64) {
     Rebuild(window);
     return;
   }
-  for (int ty = 0; ty < tiles_y; ++ty) {
-    int tx = 0;
-    while (tx < tiles_x) {
-      if (dirty_tiles_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x) +
-                       static_cast<std::size_t>(tx)] == 0) {
-        ++tx;
-        continue;
+  // Removed obstacles: the cells within r of one may have lost their nearest obstacle, so the box
+  // of radius r around it is recomputed exactly (from the sources within 2r) unless an earlier box
+  // of this update already covered it. This also settles every change inside those boxes.
+  const std::uint8_t* obstacles = window.Obstacles().data();
+  done_boxes_.clear();
+  for (const std::int32_t index : changed) {
+    if (obstacles[index] != 0) {
+      continue;
+    }
+    const int i = index % w;
+    const int j = index / w;
+    const int i0 = std::max(0, i - r);
+    const int j0 = std::max(0, j - r);
+    const int i1 = std::min(w, i + r + 1);
+    const int j1 = std::min(h, j + r + 1);
+    bool covered = false;
+    for (const Eigen::Array4i& box : done_boxes_) {
+      if (box[0] <= i0 && box[1] <= j0 && box[2] >= i1 && box[3] >= j1) {
+        covered = true;
+        break;
       }
-      const int start = tx;
-      while (tx < tiles_x && dirty_tiles_[static_cast<std::size_t>(ty) *
-                                              static_cast<std::size_t>(tiles_x) +
-                                          static_cast<std::size_t>(tx)] != 0) {
-        ++tx;
-      }
-      UpdateRegion(window, std::max(0, start * kTile - r), std::max(0, ty * kTile - r),
-                   std::min(w, tx * kTile + r), std::min(h, (ty + 1) * kTile + r));
+    }
+    if (!covered) {
+      // Grow the box a little so that neighbouring removals fall inside it.
+      const int g = r / 2;
+      const Eigen::Array4i box(std::max(0, i0 - g), std::max(0, j0 - g), std::min(w, i1 + g),
+                               std::min(h, j1 + g));
+      UpdateRegion(window, box[0], box[1], box[2], box[3]);
+      done_boxes_.push_back(box);
     }
   }
-}
-
-double MatchingField::Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
-  const Eigen::Vector2d c = limits_.ToCellCoordinates(p);
-  const double fx0 = std::floor(c.x());
-  const double fy0 = std::floor(c.y());
-  const auto i0 = static_cast<int>(fx0);
-  const auto j0 = static_cast<int>(fy0);
-  const double fx = c.x() - fx0;
-  const double fy = c.y() - fy0;
-  const double res = limits_.Resolution();
-  const int w = limits_.Width();
-  const int h = limits_.Height();
-  auto value = [&](int i, int j) {
-    if (i < 0 || j < 0 || i >= w || j >= h) {
-      return max_distance_;
+  // Added obstacles: a brushfire stamp, d^2 = min(d^2, |cell - obstacle|^2) within the disk of
+  // radius r (the truncation radius in cells).
+  const float max_squared = static_cast<float>(max_distance_ * max_distance_ * inv_resolution_ *
+                                               inv_resolution_);
+  const auto res = static_cast<float>(limits_.Resolution());
+  for (const std::int32_t index : changed) {
+    if (obstacles[index] == 0) {
+      continue;
     }
-    const float sq = field_.squared[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                                    static_cast<std::size_t>(i)];
-    return std::min(max_distance_, std::sqrt(static_cast<double>(sq)) * res);
-  };
-  const double v00 = value(i0, j0);
-  const double v10 = value(i0 + 1, j0);
-  const double v01 = value(i0, j0 + 1);
-  const double v11 = value(i0 + 1, j0 + 1);
-  if (gradient != nullptr) {
-    gradient->x() = ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) / res;
-    gradient->y() = ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) / res;
+    const int i = index % w;
+    const int j = index / w;
+    for (int dj = std::max(-r, -j); dj <= std::min(r, h - 1 - j); ++dj) {
+      for (int di = std::max(-r, -i); di <= std::min(r, w - 1 - i); ++di) {
+        const auto sq = static_cast<float>(di * di + dj * dj);
+        if (sq > max_squared) {
+          continue;
+        }
+        const std::size_t cell = static_cast<std::size_t>(j + dj) * static_cast<std::size_t>(w) +
+                                 static_cast<std::size_t>(i + di);
+        if (sq < field_.squared[cell]) {
+          field_.squared[cell] = sq;
+          field_.nearest[cell] = index;
+          distance_[cell] = std::sqrt(sq) * res;
+        }
+      }
+    }
   }
-  return (1.0 - fx) * (1.0 - fy) * v00 + fx * (1.0 - fy) * v10 + (1.0 - fx) * fy * v01 +
-         fx * fy * v11;
 }
 
 }  // namespace gridslam::scan_matching

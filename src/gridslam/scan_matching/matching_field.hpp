@@ -4,11 +4,14 @@
 // give the matcher O(1) correspondences (the map-side point and normal of each scan point, as
 // PL-ICP's closest segment, paper reconstruction §6); the distances give a smooth (bilinear)
 // distance field and the correlative search's score. The field follows the window's changes
-// incrementally: only tiles around cells whose obstacle status changed, and strips uncovered by
-// a shift, are recomputed (exactly: a cell's truncated distance can only change within the
-// truncation radius of a changed cell).
+// incrementally and exactly (a cell's truncated distance can only change within the truncation
+// radius r of a cell whose obstacle status changed): a new obstacle is stamped into the disk of
+// radius r around it (brushfire), a removed one has the box of radius r around it recomputed with
+// the exact transform from the sources within 2r, and after a shift the strips whose neighbours
+// left are recomputed.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -40,25 +43,65 @@ class MatchingField {
   [[nodiscard]] float SquaredDistanceCells(std::size_t index) const {
     return field_.squared[index];
   }
+  /// Distance to the nearest obstacle of the cell with linear index `index` [m], clamped at
+  /// MaxDistance().
+  [[nodiscard]] float Distance(std::size_t index) const { return distance_[index]; }
   /// Distance to the nearest obstacle at `p` [m], bilinear between cell centres and clamped at
-  /// MaxDistance(); `gradient` (may be null) receives its derivative with respect to p.
-  double Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const;
+  /// MaxDistance(); `gradient` (may be null) receives its derivative with respect to p. Where the
+  /// four cell centres around p are not all in the grid, MaxDistance() with a zero gradient.
+  double Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
+    const double cx = (p.x() - origin_x_) * inv_resolution_ - 0.5;
+    const double cy = (p.y() - origin_y_) * inv_resolution_ - 0.5;
+    const double fx0 = std::floor(cx);
+    const double fy0 = std::floor(cy);
+    const auto i0 = static_cast<int>(fx0);
+    const auto j0 = static_cast<int>(fy0);
+    const double fx = cx - fx0;
+    const double fy = cy - fy0;
+    const int w = limits_.Width();
+    if (i0 < 0 || j0 < 0 || i0 + 1 >= w || j0 + 1 >= limits_.Height()) {
+      // Outside the window nothing is known: no distance, no gradient (a clamped value at the
+      // border would pull points along walls that leave the window).
+      if (gradient != nullptr) {
+        gradient->setZero();
+      }
+      return max_distance_;
+    }
+    const float* row = distance_.data() + static_cast<std::size_t>(j0) * static_cast<std::size_t>(w) +
+                       static_cast<std::size_t>(i0);
+    const double v00 = row[0];
+    const double v10 = row[1];
+    const double v01 = row[w];
+    const double v11 = row[w + 1];
+    if (gradient != nullptr) {
+      gradient->x() = ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) * inv_resolution_;
+      gradient->y() = ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) * inv_resolution_;
+    }
+    return (1.0 - fx) * (1.0 - fy) * v00 + fx * (1.0 - fy) * v10 + (1.0 - fx) * fy * v01 +
+           fx * fy * v11;
+  }
 
   [[nodiscard]] long NumRebuilds() const { return num_rebuilds_; }
   [[nodiscard]] long NumTileUpdates() const { return num_tile_updates_; }
 
  private:
   void UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
+  void SetLimits(const MapLimits& limits);
 
   double max_distance_;
   MapLimits limits_;
   distance_transform::SquaredDistanceField field_;
+  std::vector<float> distance_;  ///< sqrt of field_.squared in metres, clamped at max_distance_.
+  double origin_x_ = 0.0;
+  double origin_y_ = 0.0;
+  double inv_resolution_ = 1.0;
   distance_transform::SquaredDistanceField scratch_field_;
   std::vector<std::uint8_t> scratch_sources_;
-  std::vector<std::uint8_t> dirty_tiles_;
+  std::vector<Eigen::Array4i> done_boxes_;  ///< Boxes (i0, j0, i1, j1) recomputed this update.
   bool valid_ = false;
   long num_rebuilds_ = 0;
   long num_tile_updates_ = 0;
+
 };
 
 }  // namespace gridslam::scan_matching

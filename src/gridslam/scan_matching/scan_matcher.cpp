@@ -74,6 +74,8 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
                            options_.max_correspondence_distance;
   const double inv_var = 1.0 / (options_.point_sigma * options_.point_sigma);
   const auto min_planarity = static_cast<float>(options_.min_planarity);
+  GRIDSLAM_CHECK(!point_to_line_ || map.TracksSurfaces())
+      << "the point_to_line residual needs a map that tracks surfaces";
   const CellSurface* surfaces = map.Surfaces().data();
 
   Eigen::Vector3d x = start.ToVector();

@@ -7,6 +7,8 @@
 //   ambiguous 62 x 30 m: a 60 m corridor without a single feature, and two rows of eight
 //             identical rooms (same door, same furniture) off two parallel corridors: perceptual
 //             aliasing everywhere, and the featureless corridor is longer than the laser range.
+//             Its tour drives the featureless corridor, visits four of the identical rooms and
+//             drives the middle corridor twice in the same direction.
 // Walls are 0.2 m thick; doors 1.2 m. Routes run along corridor centrelines and into rooms
 // through the doors, well clear of walls and furniture.
 #include <utility>
@@ -203,8 +205,16 @@ World MakeOffice(double resolution) {
   AppendRoomVisit(route, {47.8, 33.0}, {-1, 0}, {0, 1}, 1.4, 3.0, 1.4);
   route.push_back({47.8, 47.8});
   AppendRoomVisit(route, {11.0, 47.8}, {0, -1}, {1, 0}, 1.4, 3.4, 3.0);
-  route.insert(route.end(), {{2.2, 47.8}, {2.2, 2.2}, {25.0, 2.2}, {25.0, 13.6}, {47.8, 13.6},
-                             {47.8, 25.0}, {2.2, 25.0}, {2.2, 13.6}, {25.0, 13.6}, {25.0, 2.2},
+  route.insert(route.end(), {{2.2, 47.8},
+                             {2.2, 2.2},
+                             {25.0, 2.2},
+                             {25.0, 13.6},
+                             {47.8, 13.6},
+                             {47.8, 25.0},
+                             {2.2, 25.0},
+                             {2.2, 13.6},
+                             {25.0, 13.6},
+                             {25.0, 2.2},
                              {8.0, 2.2}});
   return b.Build("office", std::move(route));
 }
@@ -235,7 +245,9 @@ World MakeAmbiguous(double resolution) {
   route.insert(route.end(), {{2.2, 15.0}, {2.2, 27.8}});
   AppendRoomVisit(route, {door_x(1), 27.8}, {0, -1}, {1, 0}, 1.4, 4.0, 2.0);
   AppendRoomVisit(route, {door_x(6), 27.8}, {0, -1}, {1, 0}, 1.4, 4.0, 2.0);
-  route.insert(route.end(), {{59.8, 27.8}, {59.8, 2.2}, {2.2, 2.2}, {2.2, 8.0}});
+  // Down the east corridor and along the middle corridor again, the same way: past the same
+  // identical doors, back to the start, facing the way the tour began.
+  route.insert(route.end(), {{59.8, 27.8}, {59.8, 15.0}, {2.2, 15.0}, {2.2, 8.0}});
   return b.Build("ambiguous", std::move(route));
 }
 

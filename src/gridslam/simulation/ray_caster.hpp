@@ -12,8 +12,8 @@
 namespace gridslam::simulation {
 
 struct RayHit {
-  bool hit = false;     ///< A wall was hit within the maximum range.
-  double range = 0.0;   ///< Distance to the hit [m]; the maximum range if !hit.
+  bool hit = false;    ///< A wall was hit within the maximum range.
+  double range = 0.0;  ///< Distance to the hit [m]; the maximum range if !hit.
 };
 
 class RayCaster {

@@ -40,9 +40,8 @@ long Nearest(const Pose2& truth, const std::vector<Frame>& candidates, std::size
 }
 
 void SortRelations(std::vector<eval::Relation>& relations) {
-  std::sort(relations.begin(), relations.end(), [](const auto& a, const auto& b) {
-    return a.t1 != b.t1 ? a.t1 < b.t1 : a.t2 < b.t2;
-  });
+  std::sort(relations.begin(), relations.end(),
+            [](const auto& a, const auto& b) { return a.t1 != b.t1 ? a.t1 < b.t1 : a.t2 < b.t2; });
 }
 
 }  // namespace

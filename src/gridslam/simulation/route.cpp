@@ -21,8 +21,8 @@ Result<Route> Route::Make(const std::vector<Eigen::Vector2d>& points) {
   }
   for (std::size_t k = 1; k < points.size(); ++k) {
     if ((points[k] - points[k - 1]).norm() < 1e-6) {
-      return InvalidInput("route waypoints " + std::to_string(k - 1) + " and " +
-                          std::to_string(k) + " coincide");
+      return InvalidInput("route waypoints " + std::to_string(k - 1) + " and " + std::to_string(k) +
+                          " coincide");
     }
   }
   Route route;
@@ -129,7 +129,8 @@ void PurePursuit::Control(RobotState& state, double dt) {
       turning_in_place_ = false;
     }
     if (turning_in_place_) {
-      w_cmd = std::clamp(kTurnGain * alpha, -options_.max_angular_speed, options_.max_angular_speed);
+      w_cmd =
+          std::clamp(kTurnGain * alpha, -options_.max_angular_speed, options_.max_angular_speed);
     } else if (d > 1e-9) {
       const double curvature = 2.0 * std::sin(alpha) / d;
       v_cmd = options_.max_speed;

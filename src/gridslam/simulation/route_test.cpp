@@ -17,7 +17,7 @@ TEST(RouteTest, ArcLengthParameterization) {
   EXPECT_DOUBLE_EQ(route.Length(), 16.0);
   EXPECT_TRUE(route.PointAt(2.0).isApprox(Eigen::Vector2d(2.0, 0.0)));
   EXPECT_TRUE(route.PointAt(6.0).isApprox(Eigen::Vector2d(4.0, 2.0)));
-  EXPECT_TRUE(route.PointAt(18.0).isApprox(Eigen::Vector2d(2.0, 0.0)));   // wraps
+  EXPECT_TRUE(route.PointAt(18.0).isApprox(Eigen::Vector2d(2.0, 0.0)));  // wraps
   EXPECT_TRUE(route.PointAt(-2.0).isApprox(Eigen::Vector2d(0.0, 2.0)));  // wraps backwards
   EXPECT_NEAR(route.Project({2.0, 0.3}, 0.0, 4.0), 2.0, 1e-12);
   EXPECT_NEAR(route.Project({2.0, 0.3}, 16.0, 20.0), 18.0, 1e-12);

@@ -66,8 +66,8 @@ Pose2 OdometrySimulator::Measure(const Pose2& T_prev_cur, Random& random) const 
   const double scale = 1.0 + options_.translation_scale_bias;
   const double mx = dx * scale + e_along * ux - e_side * uy;
   const double my = dy * scale + e_along * uy + e_side * ux;
-  const double mtheta = dtheta * (1.0 + options_.rotation_scale_bias) +
-                        options_.rotation_drift * distance + e_theta;
+  const double mtheta =
+      dtheta * (1.0 + options_.rotation_scale_bias) + options_.rotation_drift * distance + e_theta;
   return {mx, my, mtheta};
 }
 

@@ -29,9 +29,9 @@ TEST(LaserSimulatorTest, GeometryAndNoiselessRangesMatchTheWorld) {
   ASSERT_EQ(scan.size(), 181U);
   EXPECT_NEAR(scan.angle_min, -std::numbers::pi / 2.0, 1e-12);
   EXPECT_NEAR(scan.Angle(180), std::numbers::pi / 2.0, 1e-12);
-  EXPECT_NEAR(scan.ranges[90], 14.0, 1e-5);   // ahead: wall face at x = 19
-  EXPECT_NEAR(scan.ranges[0], 9.0, 1e-5);     // right: wall face at y = 1
-  EXPECT_NEAR(scan.ranges[180], 9.0, 1e-5);   // left: wall face at y = 19
+  EXPECT_NEAR(scan.ranges[90], 14.0, 1e-5);  // ahead: wall face at x = 19
+  EXPECT_NEAR(scan.ranges[0], 9.0, 1e-5);    // right: wall face at y = 1
+  EXPECT_NEAR(scan.ranges[180], 9.0, 1e-5);  // left: wall face at y = 19
   EXPECT_EQ(scan.CountHits(), 181U);
 }
 

@@ -54,10 +54,10 @@ struct LaserSimOptions {
 /// Odometry error: a random walk whose variance grows with distance and rotation, plus an
 /// optional systematic bias (wheel radius / wheel base errors).
 struct OdometryNoiseOptions {
-  double translation_noise = 0.02;  ///< Along-track sigma after 1 m [m/sqrt(m)].
-  double lateral_noise = 0.005;     ///< Sideways sigma after 1 m [m/sqrt(m)].
+  double translation_noise = 0.03;          ///< Along-track sigma after 1 m [m/sqrt(m)].
+  double lateral_noise = 0.01;              ///< Sideways sigma after 1 m [m/sqrt(m)].
   double rotation_noise_per_meter = 0.01;   ///< Heading sigma after 1 m [rad/sqrt(m)].
-  double rotation_noise_per_radian = 0.03;  ///< Heading sigma after 1 rad turned [rad/sqrt(rad)].
+  double rotation_noise_per_radian = 0.04;  ///< Heading sigma after 1 rad turned [rad/sqrt(rad)].
   double translation_scale_bias = 0.0;      ///< Relative error of measured distance (0.01 = +1 %).
   double rotation_scale_bias = 0.0;         ///< Relative error of measured rotation.
   double rotation_drift = 0.0;              ///< Heading drift per metre travelled [rad/m].
@@ -107,13 +107,13 @@ struct MotionSimOptions {
 
 /// Which pairs of scans become ground-truth relations.
 struct RelationSimOptions {
-  int short_stride = 5;             ///< A short relation starts at every n-th scan.
-  double short_span = 1.0;          ///< Time from a short relation's first to second scan [s].
-  int revisit_stride = 5;           ///< Every n-th scan looks for an earlier visit.
-  double revisit_min_gap = 30.0;    ///< Revisits are at least this far apart in time [s].
-  double revisit_max_distance = 1.5;   ///< Largest distance between revisit poses [m].
-  double revisit_max_angle = 1.0;      ///< Largest heading difference of a revisit [rad].
-  int between_stride = 5;              ///< Every n-th scan looks for other robots' scans.
+  int short_stride = 5;               ///< A short relation starts at every n-th scan.
+  double short_span = 1.0;            ///< Time from a short relation's first to second scan [s].
+  int revisit_stride = 5;             ///< Every n-th scan looks for an earlier visit.
+  double revisit_min_gap = 30.0;      ///< Revisits are at least this far apart in time [s].
+  double revisit_max_distance = 1.5;  ///< Largest distance between revisit poses [m].
+  double revisit_max_angle = 1.0;     ///< Largest heading difference of a revisit [rad].
+  int between_stride = 5;             ///< Every n-th scan looks for other robots' scans.
 
   template <class V>
   void Visit(V& v) {
@@ -131,12 +131,12 @@ struct RelationSimOptions {
 };
 
 struct SimulationOptions {
-  std::string world = "office";  ///< Built-in world name, or a PNG floor plan / map YAML path.
-  std::string route;             ///< Waypoints file; "" = the world's built-in tour.
-  double resolution = 0.05;      ///< World grid cell size (and PNG pixel size) [m].
-  int robots = 1;                ///< Number of robots (1..4).
-  int seed = 1;                  ///< Random seed; equal seeds give byte-identical output.
-  double duration = 0.0;         ///< Simulated time per robot [s]; 0 = one tour of the route.
+  std::string world = "office";      ///< Built-in world name, or a PNG floor plan / map YAML path.
+  std::string route;                 ///< Waypoints file; "" = the world's built-in tour.
+  double resolution = 0.05;          ///< World grid cell size (and PNG pixel size) [m].
+  int robots = 1;                    ///< Number of robots (1..4).
+  int seed = 1;                      ///< Random seed; equal seeds give byte-identical output.
+  double duration = 0.0;             ///< Simulated time per robot [s]; 0 = one tour of the route.
   double start_time = 1577836800.0;  ///< Timestamp of the first message [s since epoch].
   LaserSimOptions laser;
   MotionSimOptions motion;

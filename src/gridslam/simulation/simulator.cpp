@@ -57,8 +57,9 @@ Result<RobotRun> RunRobot(const World& world, const Route& base_route,
   const std::int64_t start_us = std::llround(options.start_time * 1e6) + index * (dt_us / 4);
   const long steps_per_scan = std::max(1L, std::lround(1.0 / (options.laser.rate * dt)));
   const long steps_per_odom = std::max(1L, std::lround(1.0 / (options.motion.odometry_rate * dt)));
-  const long max_steps = forever ? std::lround(options.duration / dt)
-                                 : std::lround((4.0 * length / options.motion.max_speed + 120.0) / dt);
+  const long max_steps = forever
+                             ? std::lround(options.duration / dt)
+                             : std::lround((4.0 * length / options.motion.max_speed + 120.0) / dt);
   const Pose2 T_base_laser(options.laser.offset[0], options.laser.offset[1],
                            options.laser.offset[2]);
 

@@ -34,9 +34,9 @@ struct RobotRun {
   /// ground truth T_world_base in T_world_base_true.
   std::vector<Frame> frames;
   std::vector<eval::Relation> relations;  ///< Within this robot's log (close in time, revisits).
-  Pose2 T_world_odom;      ///< The robot's start pose: its odometry frame in the world.
-  double distance = 0.0;   ///< Distance driven [m].
-  double duration = 0.0;   ///< Time driven [s].
+  Pose2 T_world_odom;          ///< The robot's start pose: its odometry frame in the world.
+  double distance = 0.0;       ///< Distance driven [m].
+  double duration = 0.0;       ///< Time driven [s].
   double min_clearance = 0.0;  ///< Smallest distance to a wall along the way [m].
 };
 

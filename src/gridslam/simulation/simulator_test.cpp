@@ -85,7 +85,8 @@ TEST(SimulatorTest, BiasAloneMakesASystematicError) {
   // With a 5 % scale error and no rotation error, the odometry path is the true path scaled.
   const Pose2 T_world_odom = run.T_world_odom;
   for (const Frame& f : run.frames) {
-    const Eigen::Vector2d true_in_odom = (T_world_odom.Inverse() * *f.T_world_base_true).translation();
+    const Eigen::Vector2d true_in_odom =
+        (T_world_odom.Inverse() * *f.T_world_base_true).translation();
     EXPECT_NEAR((f.T_odom_base.translation() - 1.05 * true_in_odom).norm(), 0.0, 1e-6);
   }
 }
@@ -123,8 +124,9 @@ TEST(SimulatorTest, SeveralRobotsStartApartNeverShareATimestampAndMeet) {
   for (std::size_t i = 0; i < robots.size(); ++i) {
     EXPECT_TRUE(IsApprox(robots[i].frames.front().T_odom_base, Pose2()));
     for (std::size_t j = 0; j < i; ++j) {
-      EXPECT_GT((robots[i].T_world_odom.translation() - robots[j].T_world_odom.translation()).norm(),
-                5.0);
+      EXPECT_GT(
+          (robots[i].T_world_odom.translation() - robots[j].T_world_odom.translation()).norm(),
+          5.0);
     }
     for (const Frame& f : robots[i].frames) {
       // No two scans of different robots within the evaluation tolerance.

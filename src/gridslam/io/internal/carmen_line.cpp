@@ -60,9 +60,8 @@ class Fields {
       double r = 0.0;
       const std::string field = std::string(name) + "[" + std::to_string(i) + "]";
       if (pos_ >= tokens_.size()) {
-        return Error("field '" + field + "' missing (line has " +
-                     std::to_string(tokens_.size()) + " fields, " + std::to_string(n) +
-                     " readings announced)");
+        return Error("field '" + field + "' missing (line has " + std::to_string(tokens_.size()) +
+                     " fields, " + std::to_string(n) + " readings announced)");
       }
       GRIDSLAM_RETURN_IF_ERROR(Double(field.c_str(), r));
       out[static_cast<std::size_t>(i)] = static_cast<float>(r);
@@ -100,8 +99,8 @@ class Fields {
     return Status::Ok();
   }
   [[nodiscard]] Status Bad(const char* name, std::string_view token, const char* expected) const {
-    return Error(std::string("field '") + name + "': cannot read '" + std::string(token) +
-                 "' as " + expected);
+    return Error(std::string("field '") + name + "': cannot read '" + std::string(token) + "' as " +
+                 expected);
   }
 
   const std::vector<std::string_view>& tokens_;
@@ -265,13 +264,20 @@ Status ParseCarmenMessage(const std::vector<std::string_view>& tokens, const Car
 double GuessLaserFov(int num_beams) {
   constexpr double kPi = std::numbers::pi;
   switch (num_beams) {
-    case 181: return kPi;
-    case 180: return kPi / 180.0 * 179.0;
-    case 361: return kPi;
-    case 360: return kPi / 180.0 * 179.5;
-    case 401: return kPi / 180.0 * 100.0;
-    case 400: return kPi / 100.0 * 99.75;  // sic: CARMEN's formula (not 99.75 degrees)
-    default: return kPi;
+    case 181:
+      return kPi;
+    case 180:
+      return kPi / 180.0 * 179.0;
+    case 361:
+      return kPi;
+    case 360:
+      return kPi / 180.0 * 179.5;
+    case 401:
+      return kPi / 180.0 * 100.0;
+    case 400:
+      return kPi / 100.0 * 99.75;  // sic: CARMEN's formula (not 99.75 degrees)
+    default:
+      return kPi;
   }
 }
 

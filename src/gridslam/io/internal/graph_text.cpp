@@ -29,8 +29,8 @@ void Tokenize(std::string_view line, std::vector<std::string_view>& tokens) {
 }
 
 Status ParseNumbers(const std::vector<std::string_view>& tokens, std::size_t first,
-                    std::size_t count, const char* const* names, const std::string& file,
-                    long line, double* out) {
+                    std::size_t count, const char* const* names, const std::string& file, long line,
+                    double* out) {
   const std::string tag(tokens.empty() ? std::string_view() : tokens[0]);
   if (tokens.size() != first + count) {
     return InvalidInput(tag + ": expected " + std::to_string(first + count - 1) +
@@ -59,9 +59,9 @@ Result<int> ParseId(std::string_view token, const std::string& tag, const char* 
   int id = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), id);
   if (ec != std::errc() || end != token.data() + token.size()) {
-    return InvalidInput(tag + " field " + name + ": not an integer vertex id: '" +
-                            std::string(token) + "'",
-                        file, line);
+    return InvalidInput(
+        tag + " field " + name + ": not an integer vertex id: '" + std::string(token) + "'", file,
+        line);
   }
   return id;
 }

@@ -23,8 +23,8 @@ void Tokenize(std::string_view line, std::vector<std::string_view>& tokens);
 /// Parses tokens[first..first+count) as finite doubles into `out`, or an error
 /// "<tag> field <k> (<name>): ..." at file:line. `names` has `count` entries.
 Status ParseNumbers(const std::vector<std::string_view>& tokens, std::size_t first,
-                    std::size_t count, const char* const* names, const std::string& file,
-                    long line, double* out);
+                    std::size_t count, const char* const* names, const std::string& file, long line,
+                    double* out);
 
 /// Parses an integer vertex id.
 Result<int> ParseId(std::string_view token, const std::string& tag, const char* name,

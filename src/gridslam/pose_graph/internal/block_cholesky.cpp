@@ -123,7 +123,9 @@ BlockCholesky::Slot BlockCholesky::Find(int a, int b) const {
   return Slot{static_cast<int>(it - a_row_.begin()), pa > pb};
 }
 
-void BlockCholesky::SetZero() { std::fill(values_.begin(), values_.end(), Eigen::Matrix3d::Zero()); }
+void BlockCholesky::SetZero() {
+  std::fill(values_.begin(), values_.end(), Eigen::Matrix3d::Zero());
+}
 
 bool BlockCholesky::Factorize(double lambda) {
   // Up-looking Cholesky (Davis §4.7) on 3x3 blocks: row k of L from a sparse triangular solve.

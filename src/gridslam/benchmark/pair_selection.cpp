@@ -1,0 +1,175 @@
+#include "gridslam/benchmark/pair_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <set>
+#include <utility>
+
+namespace gridslam::benchmark {
+namespace {
+
+/// The pose of `truth` (sorted by time) nearest to `time`, if within `tolerance` [s].
+std::optional<Pose2> LookUp(std::span<const eval::StampedPose> truth, Time time,
+                            double tolerance) {
+  auto it = std::lower_bound(truth.begin(), truth.end(), time,
+                             [](const eval::StampedPose& p, Time t) { return p.time < t; });
+  std::optional<Pose2> best;
+  double best_gap = tolerance;
+  for (auto candidate : {it, it == truth.begin() ? it : std::prev(it)}) {
+    if (candidate == truth.end()) {
+      continue;
+    }
+    const double gap = std::abs(ToSeconds(candidate->time - time));
+    if (gap <= best_gap) {
+      best_gap = gap;
+      best = candidate->pose;
+    }
+  }
+  return best;
+}
+
+/// True centre of each key map in the world frame: T_world_key = T_world_base(t) *
+/// T_key_base(t)^-1 for the scan nearest the middle of its scans that has ground truth.
+std::vector<std::optional<Eigen::Vector2d>> TrueCentres(
+    const KeyMapCatalog& catalog, std::span<const eval::StampedPose> ground_truth,
+    double tolerance) {
+  std::vector<eval::StampedPose> truth(ground_truth.begin(), ground_truth.end());
+  std::stable_sort(truth.begin(), truth.end(),
+                   [](const auto& a, const auto& b) { return a.time < b.time; });
+  std::vector<std::optional<Eigen::Vector2d>> centres;
+  for (const KeyMapRecord& key_map : catalog.KeyMaps()) {
+    std::optional<Eigen::Vector2d> centre;
+    const int middle = (key_map.first_frame + key_map.last_frame) / 2;
+    const int span = key_map.last_frame - key_map.first_frame;
+    for (int step = 0; step <= span && !centre; ++step) {
+      // middle, middle + 1, middle - 1, middle + 2, ...
+      const int f = middle + ((step % 2 == 1) ? (step + 1) / 2 : -(step / 2));
+      if (f < key_map.first_frame || f > key_map.last_frame) {
+        continue;
+      }
+      const auto T_world_base =
+          LookUp(truth, catalog.Frames()[static_cast<std::size_t>(f)].time, tolerance);
+      if (T_world_base) {
+        const Pose2 T_world_key = *T_world_base * catalog.PoseInKeyMap(f, false).Inverse();
+        centre = T_world_key.translation();
+      }
+    }
+    centres.push_back(centre);
+  }
+  return centres;
+}
+
+}  // namespace
+
+PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
+                                  std::span<const eval::Relation> relations,
+                                  const AlignEvalOptions& options, bool relations_in_laser_frame) {
+  PositiveSelection selection;
+  std::set<std::pair<int, int>> seen;
+  for (const eval::Relation& relation : relations) {
+    ++selection.relations;
+    if (!(std::abs(ToSeconds(relation.t2 - relation.t1)) > options.min_time_gap)) {
+      continue;
+    }
+    ++selection.revisits;
+    const int f1 = catalog.FindFrame(relation.t1, options.time_tolerance);
+    const int f2 = catalog.FindFrame(relation.t2, options.time_tolerance);
+    if (f1 < 0 || f2 < 0) {
+      ++selection.missing_scan;
+      continue;
+    }
+    TestPair pair;
+    pair.key_a = catalog.Frames()[static_cast<std::size_t>(f1)].key_map;
+    pair.key_b = catalog.Frames()[static_cast<std::size_t>(f2)].key_map;
+    if (pair.key_a == pair.key_b) {
+      ++selection.same_key_map;
+      continue;
+    }
+    pair.t1 = relation.t1;
+    pair.t2 = relation.t2;
+    pair.T_a_b_true = catalog.PoseInKeyMap(f1, relations_in_laser_frame) * relation.T_1_2 *
+                      catalog.PoseInKeyMap(f2, relations_in_laser_frame).Inverse();
+    pair.centre_distance = pair.T_a_b_true.translation().norm();
+    if (pair.centre_distance > options.max_centre_distance) {
+      ++selection.too_far;
+      continue;
+    }
+    if (!options.include_shared && !catalog.WindowsSeparated(pair.key_a, pair.key_b)) {
+      ++selection.shared;
+      continue;
+    }
+    if (!seen.insert(std::minmax(pair.key_a, pair.key_b)).second) {
+      ++selection.duplicates;
+      continue;
+    }
+    selection.pairs.push_back(pair);
+  }
+  return selection;
+}
+
+NegativeSelection SelectNegatives(const KeyMapCatalog& catalog,
+                                  std::span<const eval::StampedPose> ground_truth,
+                                  const AlignEvalOptions& options) {
+  NegativeSelection selection;
+  if (options.negatives <= 0) {
+    return selection;
+  }
+  const std::vector<KeyMapRecord>& key_maps = catalog.KeyMaps();
+  const int n = static_cast<int>(key_maps.size());
+  selection.from_ground_truth = !ground_truth.empty();
+  std::vector<std::optional<Eigen::Vector2d>> centres;
+  if (selection.from_ground_truth) {
+    centres = TrueCentres(catalog, ground_truth, options.time_tolerance);
+    selection.key_maps_with_truth = static_cast<int>(
+        std::count_if(centres.begin(), centres.end(), [](const auto& c) { return c.has_value(); }));
+  } else {
+    for (const KeyMapRecord& key_map : key_maps) {
+      centres.emplace_back(key_map.T_odom_key.translation());
+    }
+  }
+  // Reservoir sampling (Algorithm R) over the candidates in a fixed order: uniform, deterministic
+  // for a seed, and memory bounded by the sample size.
+  std::mt19937_64 rng(static_cast<std::uint64_t>(options.seed));
+  const auto wanted = static_cast<std::size_t>(options.negatives);
+  for (int a = 0; a < n; ++a) {
+    if (!centres[static_cast<std::size_t>(a)]) {
+      continue;
+    }
+    for (int b = a + 1; b < n; ++b) {
+      if (!centres[static_cast<std::size_t>(b)]) {
+        continue;
+      }
+      const double distance =
+          (*centres[static_cast<std::size_t>(a)] - *centres[static_cast<std::size_t>(b)]).norm();
+      double limit = options.negative_min_distance;
+      if (!selection.from_ground_truth) {
+        limit += options.negative_drift * std::abs(key_maps[static_cast<std::size_t>(b)].travel -
+                                                   key_maps[static_cast<std::size_t>(a)].travel);
+      }
+      if (!(distance > limit)) {
+        continue;
+      }
+      TestPair pair;
+      pair.key_a = a;
+      pair.key_b = b;
+      pair.centre_distance = distance;
+      const auto seen = static_cast<std::uint64_t>(selection.candidates++);
+      if (selection.pairs.size() < wanted) {
+        selection.pairs.push_back(pair);
+      } else {
+        const std::uint64_t slot = std::uniform_int_distribution<std::uint64_t>(0, seen)(rng);
+        if (slot < wanted) {
+          selection.pairs[static_cast<std::size_t>(slot)] = pair;
+        }
+      }
+    }
+  }
+  std::sort(selection.pairs.begin(), selection.pairs.end(), [](const auto& x, const auto& y) {
+    return std::make_pair(x.key_a, x.key_b) < std::make_pair(y.key_a, y.key_b);
+  });
+  return selection;
+}
+
+}  // namespace gridslam::benchmark

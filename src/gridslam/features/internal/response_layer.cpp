@@ -1,0 +1,142 @@
+#include "gridslam/features/internal/response_layer.hpp"
+
+#include <cstdint>
+
+#include "gridslam/common/check.hpp"
+
+namespace gridslam::features::internal {
+namespace {
+
+// Sum over [c0, c1) × [y0, y1) from the integral-image rows r0 (y0) and r1 (y1).
+inline std::int32_t Box(const std::int32_t* r0, const std::int32_t* r1, int c0, int c1) {
+  return r1[c1] - r1[c0] - r0[c1] + r0[c0];
+}
+
+// The integral-image rows one output row of a filter reads.
+struct RowPointers {
+  const std::int32_t* ya;  // Dyy: outer lobe rows y − b, y + b + 1; middle y − lo, y + lo + 1
+  const std::int32_t* yb;
+  const std::int32_t* yc;
+  const std::int32_t* yd;
+  const std::int32_t* q0;  // Dxx: rows y − l + 1, y + l
+  const std::int32_t* q1;
+  const std::int32_t* p0;  // Dxy: rows y − l, y, y + 1, y + l + 1
+  const std::int32_t* p1;
+  const std::int32_t* p2;
+  const std::int32_t* p3;
+};
+
+RowPointers Rows(const IntegralImage& ii, int y, const FilterGeometry& f) {
+  const int l = f.l;
+  const int lo = (l - 1) / 2;  // the middle lobe spans [c − lo, c + lo + 1)
+  return {ii.Row(y - f.b),   ii.Row(y + f.b + 1), ii.Row(y - lo), ii.Row(y + lo + 1),
+          ii.Row(y - l + 1), ii.Row(y + l),       ii.Row(y - l),  ii.Row(y),
+          ii.Row(y + 1),     ii.Row(y + l + 1)};
+}
+
+// Integer sums of Dxx, Dyy and Dxy at column x (Eq. (4)'s box filters, reconstruction.md §2.2):
+// Dyy = outer (2l−1) × L box − 3 × middle (2l−1) × l lobe, Dxx its transpose, Dxy the four
+// l × l lobes, + top-left and bottom-right.
+struct Sums {
+  std::int32_t dxx;
+  std::int32_t dyy;
+  std::int32_t dxy;
+};
+inline Sums SumsAt(const RowPointers& r, const FilterGeometry& f, int x) {
+  const int l = f.l;
+  const int b = f.b;
+  const int lo = (l - 1) / 2;
+  return {Box(r.q0, r.q1, x - b, x + b + 1) - 3 * Box(r.q0, r.q1, x - lo, x + lo + 1),
+          Box(r.ya, r.yb, x - l + 1, x + l) - 3 * Box(r.yc, r.yd, x - l + 1, x + l),
+          Box(r.p0, r.p1, x - l, x) + Box(r.p2, r.p3, x + 1, x + l + 1) -
+              Box(r.p0, r.p1, x + 1, x + l + 1) - Box(r.p2, r.p3, x - l, x)};
+}
+
+float Normaliser(const FilterGeometry& f) {
+  return 1.0F / (255.0F * static_cast<float>(f.size) * static_cast<float>(f.size));
+}
+
+// det(H_approx) of samples k0 .. k1 of one row; kUnitStep makes the loads contiguous so that
+// the loop vectorises.
+template <bool kUnitStep>
+inline __attribute__((always_inline)) void ComputeRow(const RowPointers& r, const FilterGeometry& f,
+                                                      int k0, int k1, int step, float norm2,
+                                                      float* out) {
+  constexpr float kW2 = kDxyWeight * kDxyWeight;
+  for (int k = k0; k <= k1; ++k) {
+    const Sums s = SumsAt(r, f, kUnitStep ? k : k * step);
+    const auto fxx = static_cast<float>(s.dxx);
+    const auto fyy = static_cast<float>(s.dyy);
+    const auto fxy = static_cast<float>(s.dxy);
+    out[k] = (fxx * fyy - kW2 * fxy * fxy) * norm2;
+  }
+}
+
+// The unit-step rows of the first octave dominate the detector's cost: they are compiled also
+// for AVX2, picked at load time where the CPU has it (GCC/Clang function multi-versioning).
+__attribute__((target_clones("avx2", "default"))) void ComputeUnitStepRow(const RowPointers& r,
+                                                                          const FilterGeometry& f,
+                                                                          int k0, int k1,
+                                                                          float norm2, float* out) {
+  ComputeRow<true>(r, f, k0, k1, 1, norm2, out);
+}
+
+}  // namespace
+
+FilterGeometry Geometry(int filter_size) {
+  GRIDSLAM_CHECK(filter_size % 3 == 0 && (filter_size / 3) % 2 == 1 && filter_size >= 9)
+      << "filter size " << filter_size << " is not 3l with l odd >= 3";
+  return {filter_size, filter_size / 3, (filter_size - 1) / 2};
+}
+
+BoxHessian HessianAt(const IntegralImage& integral, int x, int y, const FilterGeometry& filter) {
+  const Sums s = SumsAt(Rows(integral, y, filter), filter, x);
+  const float norm = Normaliser(filter);
+  return {static_cast<float>(s.dxx) * norm, static_cast<float>(s.dyy) * norm,
+          static_cast<float>(s.dxy) * norm};
+}
+
+void ResponseLayer::Prepare(int filter_size, int width, int height, int step) {
+  filter_ = Geometry(filter_size);
+  step_ = step;
+  nx_ = (width - 1) / step + 1;
+  ny_ = (height - 1) / step + 1;
+  k0_ = (filter_.b + step - 1) / step;
+  k1_ = width - 1 - filter_.b >= 0 ? (width - 1 - filter_.b) / step : -1;
+  m0_ = k0_;
+  m1_ = height - 1 - filter_.b >= 0 ? (height - 1 - filter_.b) / step : -1;
+  const std::size_t needed = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  if (needed > capacity_) {
+    det_ = std::make_unique_for_overwrite<float[]>(needed);  // NOLINT(modernize-avoid-c-arrays)
+    capacity_ = needed;
+  }
+}
+
+void ResponseLayer::Compute(const IntegralImage& integral, int filter_size, int step) {
+  Prepare(filter_size, integral.width(), integral.height(), step);
+  const float norm = Normaliser(filter_);
+  for (int m = m0_; m <= m1_; ++m) {
+    const RowPointers rows = Rows(integral, m * step, filter_);
+    float* out = det_.get() + static_cast<std::ptrdiff_t>(m) * nx_;
+    if (step == 1) {
+      ComputeUnitStepRow(rows, filter_, k0_, k1_, norm * norm, out);
+    } else {
+      ComputeRow<false>(rows, filter_, k0_, k1_, step, norm * norm, out);
+    }
+  }
+}
+
+void ResponseLayer::Subsample(const ResponseLayer& finer, int width, int height, int step) {
+  GRIDSLAM_CHECK(finer.step_ * 2 == step) << "finer step " << finer.step_ << ", step " << step;
+  Prepare(finer.filter_.size, width, height, step);
+  // Sample k here is sample 2k there, inside its valid range since the filter is the same.
+  for (int m = m0_; m <= m1_; ++m) {
+    const float* in = finer.Row(2 * m);
+    float* out = det_.get() + static_cast<std::ptrdiff_t>(m) * nx_;
+    for (int k = k0_; k <= k1_; ++k) {
+      out[k] = in[2 * static_cast<std::ptrdiff_t>(k)];
+    }
+  }
+}
+
+}  // namespace gridslam::features::internal

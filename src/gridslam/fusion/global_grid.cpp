@@ -1,0 +1,164 @@
+#include "gridslam/fusion/global_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "gridslam/grid/log_odds.hpp"
+#include "gridslam/grid/ray_casting.hpp"
+#include "gridslam/grid/scan_points.hpp"
+
+namespace gridslam::fusion {
+
+Status FusionOptions::Validate() const {
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(method == "scans" || method == "nearest", "fusion.method is scans or nearest"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(resolution > 0.0, "fusion.resolution > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(max_range > 0.0, "fusion.max_range > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(hit_probability > 0.5 && hit_probability < 1.0,
+                                   "fusion.hit_probability in (0.5, 1)"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(miss_probability > 0.0 && miss_probability < 0.5,
+                                   "fusion.miss_probability in (0, 0.5)"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(clamp_probability > 0.5 && clamp_probability < 1.0,
+                                   "fusion.clamp_probability in (0.5, 1)"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(free_probability < occupied_probability,
+                                   "fusion.free_probability < occupied_probability"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(min_motion >= 0.0 && min_rotation >= 0.0,
+                                   "fusion.min_motion, min_rotation >= 0"));
+  return Require(margin >= 0.0, "fusion.margin >= 0");
+}
+
+namespace {
+
+MapLimits BoundingLimits(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double resolution,
+                         double margin) {
+  const Eigen::Vector2d origin = lo - Eigen::Vector2d::Constant(margin);
+  const Eigen::Vector2d extent = hi - lo + Eigen::Vector2d::Constant(2.0 * margin);
+  const int width = std::max(1, static_cast<int>(std::ceil(extent.x() / resolution)));
+  const int height = std::max(1, static_cast<int>(std::ceil(extent.y() / resolution)));
+  return {resolution, origin, width, height};
+}
+
+}  // namespace
+
+Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options) {
+  const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
+  const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
+  const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
+  // Select the scans to insert and their points in the map frame.
+  struct Prepared {
+    Eigen::Vector2d origin;
+    std::vector<Eigen::Vector2d> points;
+  };
+  std::vector<Prepared> prepared;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector2d hi = -lo;
+  const Pose2* last = nullptr;
+  for (const PosedScan& s : scans) {
+    if (s.scan == nullptr) {
+      continue;
+    }
+    if (last != nullptr &&
+        (s.T_map_base.translation() - last->translation()).norm() < options.min_motion &&
+        std::abs(NormalizeAngle(s.T_map_base.theta() - last->theta())) < options.min_rotation) {
+      continue;
+    }
+    last = &s.T_map_base;
+    const ScanPoints points = ExtractScanPoints(*s.scan, s.T_base_laser, options.max_range);
+    Prepared p;
+    p.origin = s.T_map_base * points.origin;
+    p.points.reserve(points.points.size());
+    for (const auto& q : points.points) {
+      p.points.push_back(s.T_map_base * q);
+    }
+    lo = lo.cwiseMin(p.origin);
+    hi = hi.cwiseMax(p.origin);
+    for (const auto& q : p.points) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    prepared.push_back(std::move(p));
+  }
+  if (prepared.empty()) {
+    return Grid2D<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
+                         kUnknownLogOdds);
+  }
+  Grid2D<float> grid(BoundingLimits(lo, hi, options.resolution, options.margin), kUnknownLogOdds);
+  const MapLimits& limits = grid.Limits();
+  for (const Prepared& p : prepared) {
+    const Eigen::Array2i from = limits.CellIndex(p.origin);
+    for (const auto& q : p.points) {
+      const Eigen::Array2i to = limits.CellIndex(q);
+      TraceLine(from, to, false, [&](int i, int j) {
+        float& v = grid(i, j);
+        v = std::max(-clamp, v + miss);
+      });
+      float& v = grid.at(to);
+      v = std::min(clamp, v + hit);
+    }
+  }
+  return grid;
+}
+
+Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
+                                const FusionOptions& options) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector2d hi = -lo;
+  for (const PosedKeyMap& k : key_maps) {
+    const MapLimits& l = k.key_map->log_odds.Limits();
+    const Eigen::Vector2d size(l.Width() * l.Resolution(), l.Height() * l.Resolution());
+    const std::array<Eigen::Vector2d, 4> corners = {
+        l.Origin(), l.Origin() + Eigen::Vector2d(size.x(), 0.0),
+        l.Origin() + Eigen::Vector2d(0.0, size.y()), l.Origin() + size};
+    for (const Eigen::Vector2d& corner : corners) {
+      const Eigen::Vector2d c = k.T_map_key * corner;
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+  }
+  if (key_maps.empty()) {
+    return Grid2D<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
+                         kUnknownLogOdds);
+  }
+  Grid2D<float> grid(BoundingLimits(lo, hi, options.resolution, 0.0), kUnknownLogOdds);
+  const MapLimits& limits = grid.Limits();
+  std::vector<Pose2> T_key_map;
+  for (const PosedKeyMap& k : key_maps) {
+    T_key_map.push_back(k.T_map_key.Inverse());
+  }
+  for (int j = 0; j < limits.Height(); ++j) {
+    for (int i = 0; i < limits.Width(); ++i) {
+      const Eigen::Vector2d p = limits.CellCenter({i, j});
+      double best = std::numeric_limits<double>::max();
+      float value = kUnknownLogOdds;
+      for (std::size_t k = 0; k < key_maps.size(); ++k) {
+        const double d = (key_maps[k].T_map_key.translation() - p).squaredNorm();
+        if (d >= best) {
+          continue;
+        }
+        const Grid2D<float>& local = key_maps[k].key_map->log_odds;
+        const Eigen::Array2i cell = local.Limits().CellIndex(T_key_map[k] * p);
+        if (local.Limits().Contains(cell) && local.at(cell) != kUnknownLogOdds) {
+          best = d;
+          value = local.at(cell);
+        }
+      }
+      grid(i, j) = value;
+    }
+  }
+  return grid;
+}
+
+OccupancyImage ToOccupancy(const Grid2D<float>& log_odds, const FusionOptions& options) {
+  OccupancyImage image(log_odds.Limits(), kUnknownCell);
+  const auto occupied = static_cast<float>(ProbabilityToLogOdds(options.occupied_probability));
+  const auto free = static_cast<float>(ProbabilityToLogOdds(options.free_probability));
+  for (std::size_t k = 0; k < log_odds.size(); ++k) {
+    const float l = log_odds.data()[k];
+    image.data()[k] = l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+  }
+  return image;
+}
+
+}  // namespace gridslam::fusion

@@ -1,0 +1,73 @@
+// Fusion of the key maps into one global occupancy grid (DESIGN.md §1.8; paper reconstruction
+// §1.5.7). Two methods: re-inserting every scan at its corrected pose into a log-odds grid (the
+// sharpest map, the default), and the paper's nearest-key-map (Voronoi) assignment, where each
+// global cell takes its value from the key map whose optimized centre is nearest and that has
+// observed it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gridslam/common/options.hpp"
+#include "gridslam/geometry/pose2.hpp"
+#include "gridslam/grid/grid2d.hpp"
+#include "gridslam/keymap/key_map.hpp"
+#include "gridslam/scan/laser_scan.hpp"
+
+namespace gridslam::fusion {
+
+struct FusionOptions {
+  std::string method = "scans";   ///< "scans" (re-insert scans) or "nearest" (paper's Voronoi).
+  double resolution = 0.05;       ///< Cell side of the global grid [m].
+  double max_range = 30.0;        ///< Returns farther than this are not inserted [m].
+  double hit_probability = 0.7;   ///< Inverse sensor model at a beam's end cell [-].
+  double miss_probability = 0.4;  ///< Inverse sensor model along the beam [-].
+  double clamp_probability = 0.97;  ///< Log-odds clamp, symmetric [-].
+  double occupied_probability = 0.65;  ///< Output: occupied above this [-].
+  double free_probability = 0.35;      ///< Output: free below this [-].
+  double min_motion = 0.05;  ///< A scan is inserted after this much travel since the last [m]...
+  double min_rotation = 0.05;  ///< ... or this much rotation [rad].
+  double margin = 1.0;         ///< Border around the observed area [m].
+
+  template <class V>
+  void Visit(V& v) {
+    v("method", method, "Fusion: scans (re-insert scans at corrected poses) or nearest (paper)");
+    v("resolution", resolution, "Cell side of the global map [m]");
+    v("max_range", max_range, "Returns farther than this are not inserted [m]");
+    v("hit_probability", hit_probability, "Occupancy probability at a beam's end [-]");
+    v("miss_probability", miss_probability, "Occupancy probability along a beam [-]");
+    v("clamp_probability", clamp_probability, "Probability clamp of the log-odds [-]");
+    v("occupied_probability", occupied_probability, "Output: occupied above this [-]");
+    v("free_probability", free_probability, "Output: free below this [-]");
+    v("min_motion", min_motion, "Insert a scan after this much travel [m] ...");
+    v("min_rotation", min_rotation, "... or this much rotation [rad]");
+    v("margin", margin, "Border around the observed area [m]");
+  }
+  [[nodiscard]] Status Validate() const;
+};
+
+/// A scan at its corrected pose in the map frame. `scan` is borrowed.
+struct PosedScan {
+  Pose2 T_map_base;
+  Pose2 T_base_laser;
+  const LaserScan* scan = nullptr;
+};
+
+/// Re-inserts the scans into a log-odds grid covering them (method "scans").
+Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options);
+
+/// A key map at its optimized pose (borrowed).
+struct PosedKeyMap {
+  Pose2 T_map_key;
+  const keymap::KeyMap* key_map = nullptr;
+};
+
+/// The paper's fusion (method "nearest"): every cell copies the log-odds of the key map whose
+/// centre is nearest among those that observed the cell.
+Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
+                                const FusionOptions& options);
+
+/// The occupancy image of a fused log-odds grid (nav_msgs convention).
+OccupancyImage ToOccupancy(const Grid2D<float>& log_odds, const FusionOptions& options);
+
+}  // namespace gridslam::fusion

@@ -1,0 +1,204 @@
+// Loop closures of the Mapper (DESIGN.md §1.6): prior-based candidates gated by the current
+// estimate, and the global appearance search that joins robots' graphs.
+#include <algorithm>
+#include <cmath>
+
+#include "gridslam/loop_closure/grid_refinement.hpp"
+#include "gridslam/matching/align.hpp"
+#include "gridslam/pipeline/mapper_internal.hpp"
+
+namespace gridslam::pipeline {
+
+std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k) {
+  const Node& a = nodes[static_cast<std::size_t>(i)];
+  const Node& b = nodes[static_cast<std::size_t>(k)];
+  const matching::VerificationInput verification =
+      description::KeyMapDescription::Verification(a.description, b.description);
+  const matching::AlignResult result = matching::Align(
+      a.description.features, b.description.features, options.matching, &verification);
+  if (!result.accepted) {
+    return std::nullopt;
+  }
+  ++stats.verified;
+  Pose2 T_a_b = result.T_a_b;
+  if (options.loop_closure.refinement.enabled) {
+    const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
+        b.description.obstacle_points, a.description.distance, T_a_b,
+        options.loop_closure.refinement);
+    if (refined.ok) {
+      T_a_b = refined.T_a_b;
+    }
+  }
+  return T_a_b;
+}
+
+bool Mapper::Impl::SearchPriorCandidates(int k) {
+  const loop_closure::LoopClosureOptions& lc = options.loop_closure;
+  const Node& current = nodes[static_cast<std::size_t>(k)];
+  const int component = FindComponent(current.robot);
+  const std::vector<double> distance = uncertainty.DistancesFrom(k);
+  struct Candidate {
+    double predicted_distance;
+    int node;
+  };
+  std::vector<Candidate> candidates;
+  for (const Node& node : nodes) {
+    if (node.id == k || !node.alignable || FindComponent(node.robot) != component) {
+      continue;
+    }
+    if (node.robot == current.robot && current.travel - node.travel < lc.min_travel_gap) {
+      continue;
+    }
+    const double u = distance[static_cast<std::size_t>(node.id)];
+    if (!std::isfinite(u)) {
+      continue;
+    }
+    const double d = Between(node.estimate, current.estimate).translation().norm();
+    const double radius = std::min(lc.max_search_radius, lc.search_radius + lc.search_radius_per_m * u);
+    if (d < radius) {
+      candidates.push_back({d, node.id});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.predicted_distance < b.predicted_distance;
+  });
+  std::vector<int> chosen;
+  for (const Candidate& c : candidates) {
+    if (static_cast<int>(chosen.size()) >= lc.max_candidates) {
+      break;
+    }
+    const Node& node = nodes[static_cast<std::size_t>(c.node)];
+    const bool too_close = std::any_of(chosen.begin(), chosen.end(), [&](int other) {
+      const Node& o = nodes[static_cast<std::size_t>(other)];
+      return o.robot == node.robot && std::abs(o.travel - node.travel) < lc.candidate_spacing;
+    });
+    if (!too_close) {
+      chosen.push_back(c.node);
+    }
+  }
+  bool accepted_any = false;
+  for (const int i : chosen) {
+    ++stats.candidates;
+    const std::optional<Pose2> measured = TryAlign(i, k);
+    if (!measured.has_value()) {
+      continue;
+    }
+    const Node& old = nodes[static_cast<std::size_t>(i)];
+    const Pose2 predicted = Between(old.estimate, current.estimate);
+    const Pose2 error = Between(predicted, *measured);
+    const double u = distance[static_cast<std::size_t>(i)];
+    ClosureRecord record{i, k, *measured, "accepted", false};
+    if (error.translation().norm() > lc.gate_xy + lc.gate_xy_per_m * u ||
+        std::abs(error.theta()) > lc.gate_theta + lc.gate_theta_per_m * u) {
+      record.outcome = "gate";
+      ++stats.rejected_gate;
+      closures.push_back(record);
+      continue;
+    }
+    EdgeRecord edge;
+    edge.from = i;
+    edge.to = k;
+    edge.T_from_to = *measured;
+    edge.information = Information(lc.sigma_xy, lc.sigma_theta);
+    edge.loop = true;
+    edge.closure = static_cast<int>(closures.size());
+    closures.push_back(record);
+    AddEdge(edge, options.graph.loop_uncertainty);
+    ++stats.accepted;
+    accepted_any = true;
+  }
+  return accepted_any;
+}
+
+namespace {
+
+// The loop i -> k (measured), k -> k2 (estimate in k's component), k2 -> i2 (measured),
+// i2 -> i (estimate in i's component) closes within the tolerances.
+bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes,
+                double tolerance_xy, double tolerance_theta) {
+  const auto& n = [&](int id) -> const Node& { return nodes[static_cast<std::size_t>(id)]; };
+  const Pose2 loop = a.T_i_k * Between(n(a.k).estimate, n(b.k).estimate) * b.T_i_k.Inverse() *
+                     Between(n(b.i).estimate, n(a.i).estimate);
+  return loop.translation().norm() < tolerance_xy && std::abs(loop.theta()) < tolerance_theta;
+}
+
+}  // namespace
+
+bool Mapper::Impl::SearchAppearance(int k) {
+  const loop_closure::LoopClosureOptions& lc = options.loop_closure;
+  const Node& current = nodes[static_cast<std::size_t>(k)];
+  const int component = FindComponent(current.robot);
+  ++stats.appearance_queries;
+  const auto votes = appearance.Query(
+      current.description.features.descriptors, lc.appearance_candidates, /*min_votes=*/5,
+      [&](int node) { return FindComponent(nodes[static_cast<std::size_t>(node)].robot) != component; });
+  for (const loop_closure::AppearanceVote& vote : votes) {
+    ++stats.appearance_candidates;
+    const std::optional<Pose2> measured = TryAlign(vote.node, k);
+    if (!measured.has_value()) {
+      continue;
+    }
+    closures.push_back({vote.node, k, *measured, "pending", true});
+    const PendingJoin match{vote.node, k, *measured};
+    const int other = FindComponent(nodes[static_cast<std::size_t>(vote.node)].robot);
+    std::vector<PendingJoin> consistent = {match};
+    for (const PendingJoin& p : pending) {
+      if (p.k == k || FindComponent(nodes[static_cast<std::size_t>(p.i)].robot) != other ||
+          FindComponent(nodes[static_cast<std::size_t>(p.k)].robot) != component) {
+        continue;
+      }
+      if (Consistent(match, p, nodes, lc.pairwise_xy, lc.pairwise_theta)) {
+        consistent.push_back(p);
+      }
+    }
+    pending.push_back(match);
+    if (static_cast<int>(consistent.size()) >= lc.min_join_matches) {
+      Join(k, consistent);
+      return true;
+    }
+  }
+  return false;
+}
+
+void Mapper::Impl::Join(int k, const std::vector<PendingJoin>& matches) {
+  const PendingJoin& anchor = matches.front();
+  const int robot_a = nodes[static_cast<std::size_t>(anchor.i)].robot;
+  const int robot_b = nodes[static_cast<std::size_t>(anchor.k)].robot;
+  const int component_a = FindComponent(robot_a);
+  const int component_b = FindComponent(robot_b);
+  // Move component b into a's frame so that anchor.k lands at X_i * T_i_k.
+  const Pose2 T_a_b = nodes[static_cast<std::size_t>(anchor.i)].estimate * anchor.T_i_k *
+                      nodes[static_cast<std::size_t>(anchor.k)].estimate.Inverse();
+  for (Node& node : nodes) {
+    if (FindComponent(node.robot) == component_b) {
+      node.estimate = T_a_b * node.estimate;
+    }
+  }
+  robot_parent[static_cast<std::size_t>(component_b)] = component_a;
+  for (const PendingJoin& m : matches) {
+    EdgeRecord edge;
+    edge.from = m.i;
+    edge.to = m.k;
+    edge.T_from_to = m.T_i_k;
+    edge.information = Information(options.loop_closure.sigma_xy, options.loop_closure.sigma_theta);
+    edge.loop = true;
+    edge.closure = static_cast<int>(closures.size());
+    closures.push_back({m.i, m.k, m.T_i_k, "joined", true});
+    edges.push_back(edge);
+    uncertainty.AddEdge(m.i, m.k, options.graph.loop_uncertainty);
+    ++stats.accepted;
+  }
+  // Joined components: drop pending matches that are now inside one component.
+  pending.erase(std::remove_if(pending.begin(), pending.end(),
+                               [&](const PendingJoin& p) {
+                                 return FindComponent(nodes[static_cast<std::size_t>(p.i)].robot) ==
+                                        FindComponent(nodes[static_cast<std::size_t>(p.k)].robot);
+                               }),
+                pending.end());
+  joins.push_back({robot_a, robot_b, now, anchor.i, anchor.k, static_cast<int>(matches.size())});
+  ++stats.joins;
+  (void)k;
+  RebuildOptimizer();
+}
+
+}  // namespace gridslam::pipeline

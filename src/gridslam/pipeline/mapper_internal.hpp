@@ -1,0 +1,123 @@
+// Internal state of the Mapper (mapper.hpp), shared by its implementation files:
+// mapper.cpp (frames, key maps, sequential edges), mapper_closures.cpp (loop closures, the
+// appearance search, joining robots), mapper_finish.cpp (final optimization, corrected poses,
+// fusion). Not part of the API.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gridslam/description/keymap_describer.hpp"
+#include "gridslam/keymap/key_map.hpp"
+#include "gridslam/loop_closure/appearance_index.hpp"
+#include "gridslam/loop_closure/uncertainty_graph.hpp"
+#include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pose_graph/sgd_optimizer.hpp"
+#include "gridslam/scan_matching/front_end.hpp"
+
+namespace gridslam::pipeline {
+
+/// A key map as a graph vertex.
+struct Node {
+  int id = 0;
+  int robot = 0;
+  int previous = -1;     ///< The robot's previous key map (vertex id), -1 for its first.
+  double travel = 0.0;   ///< The robot's path length at the key map [m].
+  Time time;
+  Pose2 T_odom_key;      ///< In the robot's front-end frame.
+  Pose2 estimate;        ///< T_map_key, current estimate.
+  keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
+  description::KeyMapDescription description;
+  bool alignable = false;  ///< Enough features to be aligned.
+};
+
+struct EdgeRecord {
+  int from = 0;
+  int to = 0;
+  Pose2 T_from_to;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  bool loop = false;
+  bool active = true;
+  int closure = -1;  ///< Index into closures_ for loop edges.
+};
+
+struct ScanRecord {
+  Time time;
+  Pose2 T_odom_base;  ///< Front-end pose.
+  double travel = 0.0;
+  int node = -1;      ///< The key map holding the scan.
+};
+
+struct FusionScan {
+  std::size_t scan_index = 0;  ///< Into RobotState::scans.
+  Pose2 T_base_laser;
+  LaserScan scan;
+};
+
+struct RobotState {
+  std::unique_ptr<scan_matching::FrontEnd> front_end;
+  std::vector<ScanRecord> scans;
+  std::size_t unassigned = 0;  ///< First scan not yet given to a key map.
+  std::vector<FusionScan> fusion_scans;
+  int last_node = -1;
+  int num_nodes = 0;
+  double travel = 0.0;
+  std::optional<Pose2> last_pose;
+  Time last_time;
+};
+
+/// A verified match between two robots' graphs that are not joined yet.
+struct PendingJoin {
+  int i = 0;  ///< Vertex of the older component.
+  int k = 0;  ///< Vertex of the newer key map's component.
+  Pose2 T_i_k;
+};
+
+struct Mapper::Impl {
+  Impl(const SlamOptions& options, int num_robots);
+
+  // mapper.cpp
+  void AddFrame(int robot, const Frame& frame);
+  void ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time);
+  void AddEdge(EdgeRecord edge, double uncertainty);
+  void Iterate(int iterations);
+  void SyncEstimates();
+  void RebuildOptimizer();
+  int FindComponent(int robot);
+  [[nodiscard]] Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) const;
+
+  // mapper_closures.cpp
+  std::optional<Pose2> TryAlign(int i, int k);
+  bool SearchPriorCandidates(int k);
+  bool SearchAppearance(int k);
+  void Join(int k, const std::vector<PendingJoin>& matches);
+
+  // mapper_finish.cpp
+  MapperResult Finish();
+  void FinalOptimization();
+  std::vector<TrajectoryPose> CorrectedTrajectory(int robot) const;
+
+  SlamOptions options;
+  description::KeyMapDescriber describer;
+  std::vector<RobotState> robots;
+  std::vector<int> robot_parent;  ///< Union-find of robots joined into one map.
+  std::vector<Node> nodes;
+  std::vector<EdgeRecord> edges;
+  std::vector<ClosureRecord> closures;
+  std::vector<JoinRecord> joins;
+  std::vector<PendingJoin> pending;
+  loop_closure::UncertaintyGraph uncertainty;
+  loop_closure::AppearanceIndex appearance;
+  std::unique_ptr<pose_graph::SgdOptimizer> sgd;
+  MapperStats stats;
+  Time now;
+};
+
+/// Seconds since `start` (steady clock).
+inline double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace gridslam::pipeline

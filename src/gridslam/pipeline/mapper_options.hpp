@@ -1,0 +1,69 @@
+// Options of the graph-SLAM mapper (DESIGN.md §1, §1.6-1.8): how key maps become a pose graph,
+// how it is optimized online and at the end, and how every scan's corrected pose follows.
+#pragma once
+
+#include <string>
+
+#include "gridslam/common/options.hpp"
+
+namespace gridslam::pipeline {
+
+struct GraphOptions {
+  /// Sequential edges between consecutive key maps of a robot: "front_end" (the front end's
+  /// relative pose, always) or "alignment" (feature alignment + refinement when it is verified
+  /// and agrees with the front end, else the front end's).
+  std::string sequential_edges = "front_end";
+  /// Sequential edge standard deviations: a floor plus a part per metre between the key maps.
+  double sequential_sigma_xy = 0.01;           ///< [m]
+  double sequential_sigma_xy_per_m = 0.01;     ///< [m/m]
+  double sequential_sigma_theta = 0.002;       ///< [rad]
+  double sequential_sigma_theta_per_m = 0.002;  ///< [rad/m]
+  /// Weight of a loop edge in the uncertainty distance (DESIGN 1.6) [m].
+  double loop_uncertainty = 0.5;
+  /// SGD iterations run after each accepted closure (online, incremental) [-].
+  int online_iterations = 10;
+  /// Final optimization of the whole graph: gn, lm, sgd+gn, sgd or none.
+  std::string final_method = "lm";
+  /// Rounds of final optimization + pruning of inconsistent loop edges [-].
+  int prune_rounds = 3;
+  /// Corrected scan poses interpolate the drift correction between neighbouring key maps.
+  bool interpolate_corrections = true;
+
+  template <class V>
+  void Visit(V& v) {
+    v("sequential_edges", sequential_edges,
+      "Sequential edges: front_end (relative pose of the front end) or alignment");
+    v("sequential_sigma_xy", sequential_sigma_xy, "Sequential edge std, translation floor [m]");
+    v("sequential_sigma_xy_per_m", sequential_sigma_xy_per_m,
+      "... plus this per metre between the key maps [m/m]");
+    v("sequential_sigma_theta", sequential_sigma_theta, "Sequential edge std, rotation floor [rad]");
+    v("sequential_sigma_theta_per_m", sequential_sigma_theta_per_m,
+      "... plus this per metre [rad/m]");
+    v("loop_uncertainty", loop_uncertainty,
+      "Weight of a loop edge in the uncertainty distance of the gates [m]");
+    v("online_iterations", online_iterations, "SGD iterations after each accepted closure [-]");
+    v("final_method", final_method, "Final optimization: gn, lm, sgd+gn, sgd or none");
+    v("prune_rounds", prune_rounds, "Rounds of final optimization and loop-edge pruning [-]");
+    v("interpolate_corrections", interpolate_corrections,
+      "Interpolate the drift correction of scans between neighbouring key maps");
+  }
+  [[nodiscard]] Status Validate() const {
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(sequential_edges == "front_end" || sequential_edges == "alignment",
+                "graph.sequential_edges is front_end or alignment"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(sequential_sigma_xy > 0.0 && sequential_sigma_theta > 0.0,
+                                     "graph sequential sigmas > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(sequential_sigma_xy_per_m >= 0.0 && sequential_sigma_theta_per_m >= 0.0,
+                "graph sequential sigma growth >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(loop_uncertainty >= 0.0, "graph.loop_uncertainty >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(online_iterations >= 0, "graph.online_iterations >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(final_method == "gn" || final_method == "lm" || final_method == "sgd+gn" ||
+                    final_method == "sgd" || final_method == "none",
+                "graph.final_method is gn, lm, sgd+gn, sgd or none"));
+    return Require(prune_rounds >= 1, "graph.prune_rounds >= 1");
+  }
+};
+
+}  // namespace gridslam::pipeline

@@ -1,0 +1,194 @@
+#include "gridslam/scan_matching/front_end.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "gridslam/scan_matching/internal/synthetic_world.hpp"
+
+namespace gridslam::scan_matching {
+namespace {
+
+using internal::SimulateScan;
+using internal::TestWorld;
+
+// True robot poses: turn in place towards each waypoint, then drive to it (4 cm, <= 0.08 rad per
+// frame).
+std::vector<Pose2> DriveThroughTheWorld() {
+  const std::vector<Eigen::Vector2d> waypoints = {{8.5, 1.5}, {8.8, 3.7}, {14.5, 3.8}, {9.0, 3.7},
+                                                  {5.0, 5.5}, {1.5, 3.0}, {2.0, 1.2}, {6.0, 1.0}};
+  std::vector<Pose2> poses = {Pose2(2.0, 1.0, 0.0)};
+  for (const Eigen::Vector2d& target : waypoints) {
+    while (true) {
+      const Pose2& p = poses.back();
+      const Eigen::Vector2d d = target - p.translation();
+      if (d.norm() < 0.04) {
+        break;
+      }
+      const double turn = NormalizeAngle(std::atan2(d.y(), d.x()) - p.theta());
+      if (std::abs(turn) > 0.05) {
+        poses.emplace_back(p.translation(), p.theta() + std::clamp(turn, -0.08, 0.08));
+      } else {
+        poses.emplace_back(p.translation() + 0.04 * d.normalized(), p.theta() + turn);
+      }
+    }
+  }
+  return poses;
+}
+
+// Frames with a mounted laser (0.1 m ahead) and odometry that overestimates turns by 5 % and
+// distances by 2 %, plus noise.
+std::vector<Frame> MakeFrames(const std::vector<Pose2>& truth) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const Pose2 T_base_laser(getenv("FE_NOOFF") ? 0.0 : 0.1, 0.0, 0.0);
+  std::vector<Frame> frames;
+  Pose2 odometry = truth.front();
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    if (k > 0) {
+      const Pose2 step = Between(truth[k - 1], truth[k]);
+      odometry = odometry * Pose2(1.02 * step.x() + 0.002 * noise(rng), 0.002 * noise(rng),
+                                  1.05 * step.theta() + 0.002 * noise(rng));
+    }
+    Frame frame;
+    frame.time = FromSeconds(1000.0 + 0.1 * static_cast<double>(k));
+    frame.corrected_time = frame.time;
+    frame.T_odom_base = odometry;
+    frame.T_base_laser = T_base_laser;
+    frame.scan = SimulateScan(TestWorld(), truth[k] * T_base_laser, 181, 30.0, 0.01,
+                              static_cast<unsigned>(k));
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+// Mean translational and rotational error of the relative poses over `span` frames.
+std::pair<double, double> RelativeError(const std::vector<Pose2>& truth,
+                                        const std::vector<Pose2>& estimate, std::size_t span) {
+  double translation = 0.0;
+  double rotation = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k + span < truth.size(); k += span) {
+    const Pose2 error =
+        Between(Between(truth[k], truth[k + span]), Between(estimate[k], estimate[k + span]));
+    translation += error.translation().norm();
+    rotation += std::abs(error.theta());
+    ++n;
+  }
+  return {translation / static_cast<double>(n), rotation / static_cast<double>(n)};
+}
+
+TEST(FrontEnd, BeatsOdometryAndHandsOutEveryScanInOneKeyMap) {
+  const std::vector<Pose2> truth = DriveThroughTheWorld();
+  ASSERT_GT(truth.size(), 500U);
+  const std::vector<Frame> frames = MakeFrames(truth);
+  FrontEndOptions options;
+  options.local_map.size = 12.0;
+  options.keymap.size = 8.0;
+  FrontEnd front_end(options);
+  std::vector<Pose2> estimate;
+  std::vector<Pose2> odometry;
+  std::vector<keymap::KeyMap> keys;
+  for (const Frame& frame : frames) {
+    FrontEndStep step = front_end.AddFrame(frame);
+    EXPECT_EQ(step.time, frame.time);
+    estimate.push_back(step.T_odom_base);
+    odometry.push_back(frame.T_odom_base);
+    if (getenv("FE_DEBUG")) {
+      const std::size_t k = estimate.size() - 1;
+      const Pose2 e = Between(Between(truth.front(), truth[k]), Between(estimate.front(), estimate[k]));
+      printf("%zu %s score=%.2f corr=%d it=%d err=(%.3f %.3f %.4f) est=(%.3f %.3f) truth=(%.3f %.3f) cov_xx=%.2e win_origin=(%.2f %.2f)\n", k, ToString(step.status), step.match.score, step.match.correspondences, step.match.iterations, e.x(), e.y(), e.theta(), step.T_odom_base.x(), step.T_odom_base.y(), truth[k].x(), truth[k].y(), step.covariance(0,0), front_end.Window()->Limits().Origin().x(), front_end.Window()->Limits().Origin().y());
+    }
+    if (step.key_map) {
+      keys.push_back(std::move(*step.key_map));
+    }
+  }
+  if (auto last = front_end.Finish()) {
+    keys.push_back(std::move(*last));
+  }
+  const FrontEndStats& stats = front_end.Stats();
+  EXPECT_EQ(stats.frames, static_cast<long>(frames.size()));
+  EXPECT_EQ(stats.matched, stats.frames - 1);
+  EXPECT_EQ(stats.fallback_few_points + stats.fallback_empty_map + stats.fallback_rejected, 0);
+
+  // Over 2 s (20 frames) the front end is far better than the odometry, in both parts.
+  const auto [odometry_xy, odometry_theta] = RelativeError(truth, odometry, 20);
+  const auto [estimate_xy, estimate_theta] = RelativeError(truth, estimate, 20);
+  EXPECT_LT(estimate_xy, 0.02);
+  EXPECT_LT(estimate_theta, DegToRad(0.4));
+  EXPECT_LT(estimate_xy, 0.5 * odometry_xy);
+  EXPECT_LT(estimate_theta, 0.2 * odometry_theta);
+  // Over the whole drive the drift stays small.
+  const Pose2 end_error = Between(Between(truth.front(), truth.back()),
+                                  Between(estimate.front(), estimate.back()));
+  EXPECT_LT(end_error.translation().norm(), 0.15);
+
+  // Key maps: every scan exactly once, in order, with T_odom_key * T_key_scan = its pose.
+  ASSERT_GE(keys.size(), 10U);
+  EXPECT_EQ(stats.key_maps, static_cast<long>(keys.size()));
+  std::size_t index = 0;
+  for (const keymap::KeyMap& key : keys) {
+    EXPECT_EQ(key.log_odds.Width(), options.keymap.NumCells(0.05));
+    for (const keymap::KeyMapScan& scan : key.scans) {
+      ASSERT_LT(index, estimate.size());
+      EXPECT_EQ(scan.time, frames[index].time);
+      EXPECT_TRUE(IsApprox(key.T_odom_key * scan.T_key_scan, estimate[index], 1e-9, 1e-9));
+      ++index;
+    }
+  }
+  EXPECT_EQ(index, frames.size());
+}
+
+TEST(FrontEnd, ScansWithoutReturnsFallBackToOdometryAndMarkNothing) {
+  std::vector<Pose2> truth = DriveThroughTheWorld();
+  truth.resize(60);
+  std::vector<Frame> frames = MakeFrames(truth);
+  // Frames 20-29: all no-returns, NaN, negative or empty.
+  for (std::size_t k = 20; k < 30; ++k) {
+    LaserScan& scan = frames[k].scan;
+    if (k % 2 == 0) {
+      scan.ranges.clear();
+    } else {
+      for (std::size_t b = 0; b < scan.size(); ++b) {
+        const float values[] = {81.83F, 81.91F, 30.0F, std::numeric_limits<float>::quiet_NaN(),
+                                -1.0F};
+        scan.ranges[b] = values[b % 5];
+      }
+    }
+  }
+  FrontEndOptions options;
+  options.local_map.clear_no_returns = true;
+  FrontEnd front_end(options);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const long obstacles_before =
+        front_end.Window() != nullptr ? front_end.Window()->NumObstacles() : 0;
+    const Pose2 previous = k > 0 ? frames[k - 1].T_odom_base : Pose2();
+    const FrontEndStep step = front_end.AddFrame(frames[k]);
+    if (k >= 20 && k < 30) {
+      EXPECT_EQ(step.status, FrameStatus::kFallbackFewPoints);
+      EXPECT_LE(front_end.Window()->NumObstacles(), obstacles_before);
+      (void)previous;
+    }
+  }
+  EXPECT_EQ(front_end.Stats().fallback_few_points, 10);
+  EXPECT_EQ(front_end.Stats().matched, 49);
+}
+
+TEST(FrontEnd, OdometryOnlyModeReturnsTheOdometry) {
+  std::vector<Pose2> truth = DriveThroughTheWorld();
+  truth.resize(50);
+  const std::vector<Frame> frames = MakeFrames(truth);
+  FrontEndOptions options;
+  options.match = false;
+  FrontEnd front_end(options);
+  for (const Frame& frame : frames) {
+    const FrontEndStep step = front_end.AddFrame(frame);
+    EXPECT_TRUE(IsApprox(step.T_odom_base, frame.T_odom_base, 1e-9, 1e-9));
+  }
+  EXPECT_EQ(front_end.Stats().matched, 0);
+}
+
+}  // namespace
+}  // namespace gridslam::scan_matching

@@ -1,0 +1,161 @@
+#include "gridslam/scan_matching/scan_matcher.hpp"
+
+#include <numbers>
+
+#include <Eigen/Cholesky>
+#include <gtest/gtest.h>
+
+#include "gridslam/scan_matching/internal/synthetic_world.hpp"
+
+namespace gridslam::scan_matching {
+namespace {
+
+using internal::SimulateScan;
+using internal::TestWorld;
+
+// Poses around the room from which the map is built.
+std::vector<Pose2> MapPoses() {
+  return {{2.0, 1.0, 0.3},  {5.0, 1.2, 0.0},  {8.0, 2.0, 1.2},  {8.5, 5.5, 2.5}, {5.0, 5.8, 3.0},
+          {1.5, 4.0, -1.8}, {4.5, 3.5, -0.7}, {11.5, 3.7, 0.0}, {14.0, 3.8, 3.1}, {6.0, 3.0, 1.6}};
+}
+
+// The map built from the scans at MapPoses(), inserted at T_shift * pose: the map of the world
+// moved by T_shift.
+struct ShiftedMap {
+  explicit ShiftedMap(const Pose2& T_shift, double max_distance = 0.3)
+      : window(Options(), T_shift * Eigen::Vector2d(6.0, 3.5), true), field(max_distance) {
+    for (const Pose2& pose : MapPoses()) {
+      const LaserScan scan = SimulateScan(TestWorld(), pose);
+      window.InsertScan(T_shift * pose, ExtractScanPoints(scan, Pose2(), 30.0));
+    }
+    field.Update(window);
+  }
+  static LocalMapOptions Options() {
+    LocalMapOptions options;
+    options.size = 20.0;
+    return options;
+  }
+  RollingWindow window;
+  MatchingField field;
+};
+
+ScanMatcherOptions MatcherOptions(const std::string& residual) {
+  ScanMatcherOptions options;
+  options.residual = residual;
+  return options;
+}
+
+class ScanMatcherResidual : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScanMatcherResidual, RecoversAKnownShiftOfTheMap) {
+  const Pose2 T_shift(0.12, -0.08, 0.04);
+  const ShiftedMap map(T_shift);
+  const ScanMatcher matcher(MatcherOptions(GetParam()));
+  for (const Pose2& truth : {Pose2(3.0, 1.5, 0.2), Pose2(7.0, 3.0, 2.0), Pose2(12.0, 3.6, -0.1)}) {
+    // The scan is taken in the world at `truth`; the prior ignores the shift.
+    const ScanPoints scan = ExtractScanPoints(SimulateScan(TestWorld(), truth, 361), Pose2(), 30.0);
+    const MatchResult result =
+        matcher.Match(map.window, map.field, scan, truth, Eigen::Matrix3d::Zero());
+    const Pose2 expected = T_shift * truth;
+    ASSERT_TRUE(result.ok);
+    EXPECT_LT((result.T_odom_base.translation() - expected.translation()).norm(), 0.05)
+        << GetParam() << " at " << truth.x() << ", " << truth.y();
+    EXPECT_LT(std::abs(NormalizeAngle(result.T_odom_base.theta() - expected.theta())),
+              DegToRad(0.3));
+    EXPECT_GT(result.score, 0.9);
+    EXPECT_GT(result.correspondences, 100);
+    // The covariance is symmetric positive definite.
+    EXPECT_TRUE(result.covariance.isApprox(result.covariance.transpose()));
+    EXPECT_GT(result.covariance.llt().matrixLLT().diagonal().minCoeff(), 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Residuals, ScanMatcherResidual,
+                         ::testing::Values("distance_field", "point_to_line"));
+
+TEST(ScanMatcher, CorrelativeSearchRescuesAPoorPrior) {
+  const ShiftedMap map(Pose2(0.3, 0.25, -0.15));
+  const Pose2 truth(4.0, 2.8, 0.5);
+  const Pose2 expected = Pose2(0.3, 0.25, -0.15) * truth;
+  const ScanPoints scan = ExtractScanPoints(SimulateScan(TestWorld(), truth, 181), Pose2(), 30.0);
+  ScanMatcherOptions options = MatcherOptions("distance_field");
+  options.correlative_search = false;
+  const MatchResult plain =
+      ScanMatcher(options).Match(map.window, map.field, scan, truth, Eigen::Matrix3d::Zero());
+  options.correlative_search = true;
+  const MatchResult searched =
+      ScanMatcher(options).Match(map.window, map.field, scan, truth, Eigen::Matrix3d::Zero());
+  EXPECT_FALSE(plain.searched);
+  EXPECT_TRUE(searched.searched);
+  EXPECT_GE(searched.score, plain.score);
+  EXPECT_LT((searched.T_odom_base.translation() - expected.translation()).norm(), 0.05);
+  EXPECT_LT(std::abs(NormalizeAngle(searched.T_odom_base.theta() - expected.theta())),
+            DegToRad(0.3));
+}
+
+TEST(ScanMatcher, TooFewCorrespondencesAreNotOk) {
+  const ShiftedMap map{Pose2()};
+  ScanPoints scan;
+  scan.points = {{1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}};
+  scan.normals.assign(3, Eigen::Vector2d::Zero());
+  scan.normal_quality.assign(3, 0.0F);
+  const MatchResult result = ScanMatcher(MatcherOptions("distance_field"))
+                                 .Match(map.window, map.field, scan, Pose2(2.0, 1.0, 0.3),
+                                        Eigen::Matrix3d::Zero());
+  EXPECT_FALSE(result.ok);
+}
+
+TEST(ScanMatcher, PriorHoldsAnUnconstrainedDirection) {
+  // A map of two parallel walls only (an endless corridor along x): the scan fixes y and yaw,
+  // the prior fixes x.
+  LocalMapOptions options;
+  options.size = 20.0;
+  RollingWindow window(options, Eigen::Vector2d::Zero(), false);
+  // Walls in the middle of cell rows (a wall on a cell border occupies two rows).
+  const std::vector<internal::Segment> corridor = {{{-50.0, -0.975}, {50.0, -0.975}},
+                                                   {{-50.0, 1.025}, {50.0, 1.025}}};
+  for (double x = -2.0; x <= 2.0; x += 0.5) {
+    window.InsertScan(Pose2(x, 0.0, 0.0),
+                      ExtractScanPoints(SimulateScan(corridor, Pose2(x, 0.0, 0.0)), Pose2(), 30.0));
+  }
+  MatchingField field(0.3);
+  field.Update(window);
+  const ScanPoints scan =
+      ExtractScanPoints(SimulateScan(corridor, Pose2(0.0, 0.1, 0.05)), Pose2(), 30.0);
+  const Eigen::Matrix3d prior = Eigen::Vector3d(100.0, 100.0, 100.0).asDiagonal();
+  const MatchResult result = ScanMatcher(MatcherOptions("distance_field"))
+                                 .Match(window, field, scan, Pose2(0.3, 0.0, 0.0), prior);
+  ASSERT_TRUE(result.ok);
+  // x comes from the prior (0.3; the scan was taken at x = 0), up to the weak pull of the gaps
+  // that grazing rays cut into the map's walls.
+  EXPECT_GT(result.T_odom_base.x(), 0.2);
+  EXPECT_NEAR(result.T_odom_base.y(), 0.1, 0.03);  // from the scan
+  EXPECT_NEAR(result.T_odom_base.theta(), 0.05, DegToRad(0.5));
+  // The covariance says so: x is far less certain than y.
+  EXPECT_GT(result.covariance(0, 0), 10.0 * result.covariance(1, 1));
+}
+
+}  // namespace
+}  // namespace gridslam::scan_matching
+namespace gridslam::scan_matching {
+namespace {
+TEST(ScanMatcher, DebugOffset) {
+  const Pose2 T_base_laser(atof(getenv("OFF")), 0.0, 0.0);
+  LocalMapOptions options;
+  options.size = 20.0;
+  RollingWindow window(options, Eigen::Vector2d(6.0, 3.5), true);
+  for (const Pose2& pose : MapPoses()) {
+    const LaserScan scan = SimulateScan(TestWorld(), pose * T_base_laser);
+    window.InsertScan(pose, ExtractScanPoints(scan, T_base_laser, 30.0));
+  }
+  MatchingField field(0.3);
+  field.Update(window);
+  const ScanMatcher matcher(MatcherOptions(getenv("RES")));
+  for (const Pose2& truth : {Pose2(3.0, 1.5, 0.2), Pose2(7.0, 3.0, 2.0), Pose2(12.0, 3.6, -0.1)}) {
+    const ScanPoints scan = ExtractScanPoints(SimulateScan(TestWorld(), truth * T_base_laser, 181), T_base_laser, 30.0);
+    const MatchResult result = matcher.Match(window, field, scan, truth * Pose2(0.05, 0.02, 0.03), Eigen::Matrix3d::Zero());
+    printf("truth %.3f %.3f %.4f got %.3f %.3f %.4f\n", truth.x(), truth.y(), truth.theta(), result.T_odom_base.x(), result.T_odom_base.y(), result.T_odom_base.theta());
+  }
+}
+}  // namespace
+}  // namespace gridslam::scan_matching
