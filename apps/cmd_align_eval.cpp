@@ -1,13 +1,16 @@
 // `gridslam align-eval LOG RELATIONS [--json] [--detector NAME] [--detect-image distance|grid]
 // [--descriptor-image distance|obstacle|grid] [--no-verify] [--no-refine] [--negatives N]
-// [--ground-truth FILE] [--max-centre-distance M] [--include-shared] [--seed S] [--pairs FILE]`:
+// [--ground-truth FILE] [--max-centre-distance M] [--include-shared] [--no-truth-check]
+// [--seed S] [--pairs FILE]`:
 // the key-map alignment benchmark (DESIGN.md §2, §3.2; benchmark/align_eval.hpp). The flags
 // override the `description`, `matching.verification`, `loop_closure.refinement` and
 // `align_eval` sections of the configuration. `--pairs FILE` writes one TSV line per tested pair.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -37,6 +40,7 @@ struct AlignEvalArgs {
   std::optional<std::string> ground_truth;
   std::optional<double> max_centre_distance;
   bool include_shared = false;
+  bool no_truth_check = false;
   std::optional<int> seed;
   std::optional<std::string> pairs;
 };
@@ -105,6 +109,8 @@ nlohmann::json ToJson(const benchmark::AlignEvalReport& r, const benchmark::Alig
             {"same_keymap", p.same_key_map},
             {"too_far", p.too_far},
             {"shared_window", p.shared},
+            {"unreliable_truth", p.unreliable},
+            {"unchecked_truth", p.unchecked},
             {"duplicate_pairs", p.duplicates}}},
           {"frames", r.frames},
           {"keymaps", r.key_maps},
@@ -133,6 +139,12 @@ void PrintText(const benchmark::AlignEvalReport& r) {
               r.key_maps, s.described);
 }
 
+/// A reason as one TSV token ("too few inliers" -> "too_few_inliers").
+std::string Token(std::string text) {
+  std::replace(text.begin(), text.end(), ' ', '_');
+  return text;
+}
+
 Status WritePairs(const std::string& path, const benchmark::AlignEvalReport& r) {
   std::ofstream out(path);
   if (!out) {
@@ -140,20 +152,25 @@ Status WritePairs(const std::string& path, const benchmark::AlignEvalReport& r) 
   }
   out << "# kind key_a key_b t1 t2 centre_distance accepted reason correct error_m error_deg "
          "error_unrefined_m error_unrefined_deg features_a features_b matches inliers agreement "
-         "contradiction ms_align\n";
-  char line[512];
+         "contradiction ms_align relations truth_spread_m truth_spread_deg truth_checks "
+         "truth_error_m truth_error_deg\n";
+  char line[640];
   for (const auto* set : {&r.positives, &r.negatives}) {
     for (const benchmark::PairOutcome& o : *set) {
       std::snprintf(line, sizeof line,
                     "%s %d %d %s %s %.3f %d %s %d %.4f %.4f %.4f %.4f %d %d %d %d %.3f %.3f "
-                    "%.3f\n",
+                    "%.3f %d %.4f %.4f %d %.4f %.4f\n",
                     o.positive ? "positive" : "negative", o.pair.key_a, o.pair.key_b,
                     o.positive ? FormatSeconds(o.pair.t1).c_str() : "-",
                     o.positive ? FormatSeconds(o.pair.t2).c_str() : "-", o.pair.centre_distance,
-                    o.accepted ? 1 : 0, matching::ToString(o.reason), o.correct ? 1 : 0,
+                    o.accepted ? 1 : 0, Token(matching::ToString(o.reason)).c_str(),
+                    o.correct ? 1 : 0,
                     o.error_translation, RadToDeg(o.error_rotation), o.error_translation_aligned,
                     RadToDeg(o.error_rotation_aligned), o.features_a, o.features_b, o.matches,
-                    o.inliers, o.agreement, o.contradiction, 1e3 * o.seconds_align);
+                    o.inliers, o.agreement, o.contradiction, 1e3 * o.seconds_align, o.pair.relations,
+                    o.pair.truth_spread_translation, RadToDeg(o.pair.truth_spread_rotation),
+                    o.pair.truth_checks, o.pair.truth_error_translation,
+                    RadToDeg(o.pair.truth_error_rotation));
       out << line;
     }
   }
@@ -174,6 +191,9 @@ int RunAlignEval(const AlignEvalArgs& args, AppContext& context) {
   eval.max_centre_distance = args.max_centre_distance.value_or(eval.max_centre_distance);
   eval.include_shared = eval.include_shared || args.include_shared;
   eval.seed = args.seed.value_or(eval.seed);
+  if (args.no_truth_check) {
+    eval.truth_max_error = eval.truth_max_error_deg = std::numeric_limits<double>::infinity();
+  }
   if (const Status s = options.Validate(); !s.ok()) {
     return ReportError(s.error());
   }
@@ -238,6 +258,8 @@ RunFunction SetupAlignEval(CLI::App& sub, AppContext& /*context*/) {
                  "Overlap criterion: true key-map centres at most this far apart [m]");
   sub.add_flag("--include-shared", args->include_shared,
                "Also test pairs whose local-map windows never separated");
+  sub.add_flag("--no-truth-check", args->no_truth_check,
+               "Also test pairs where the front end was locally inaccurate");
   sub.add_option("--seed", args->seed, "Seed of the negative-pair draw");
   sub.add_option("--pairs", args->pairs, "Write one TSV line per tested pair to this file");
   return [args](AppContext& ctx) { return RunAlignEval(*args, ctx); };

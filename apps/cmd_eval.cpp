@@ -1,5 +1,9 @@
 // `gridslam eval RELATIONS TRAJECTORY [--json] [--min-dt S] [--max-dt S] [--tolerance S]`: the
 // SLAM benchmark's relation metric (DESIGN.md §2, §3.1) of a trajectory file (plain or TUM).
+// Several robots (issue 8): `gridslam eval RELATIONS TRAJ_0 TRAJ_1 ... [--index index.txt]`
+// scores relations within and between robots of a merged map (trajectories in one common
+// frame): each timestamp is looked up in the trajectory of the robot index.txt gives it, or,
+// without --index, in the first trajectory that holds it (multi_robot/robot_index.hpp).
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -9,7 +13,9 @@
 
 #include "gridslam/eval/relation_metric.hpp"
 #include "gridslam/io/relations_io.hpp"
+#include "gridslam/io/simulation_io.hpp"
 #include "gridslam/io/trajectory_io.hpp"
+#include "gridslam/multi_robot/robot_index.hpp"
 
 #include "command.hpp"
 
@@ -18,7 +24,8 @@ namespace {
 
 struct EvalArgs {
   std::string relations;
-  std::string trajectory;
+  std::vector<std::string> trajectories;
+  std::string index;
   bool json = false;
   // Flags override the configuration; applied in RunEval, after --config was read.
   std::optional<double> min_dt;
@@ -56,13 +63,47 @@ int RunEval(const EvalArgs& args, AppContext& context) {
   if (!relations.ok()) {
     return ReportError(relations.error());
   }
-  auto trajectory = io::ReadTrajectory(args.trajectory);
-  if (!trajectory.ok()) {
-    return ReportError(trajectory.error());
+  std::vector<std::vector<io::StampedPose>> trajectories;
+  for (const std::string& path : args.trajectories) {
+    auto trajectory = io::ReadTrajectory(path);
+    if (!trajectory.ok()) {
+      return ReportError(trajectory.error());
+    }
+    trajectories.push_back(std::move(trajectory).value());
   }
-  const auto m = eval::EvaluateRelations(relations.value(), trajectory.value(), options);
+  multi_robot::RobotIndex index;
+  if (!args.index.empty()) {
+    auto entries = io::ReadScanIndex(args.index);
+    if (!entries.ok()) {
+      return ReportError(entries.error());
+    }
+    std::vector<std::pair<Time, int>> pairs;
+    for (const io::ScanIndexEntry& e : entries.value()) {
+      if (e.robot < 0 || e.robot >= static_cast<int>(trajectories.size())) {
+        return ReportError(InvalidInput("robot " + std::to_string(e.robot) + " at " +
+                                            FormatSeconds(e.time) + " has no trajectory (" +
+                                            std::to_string(trajectories.size()) + " given)",
+                                        args.index));
+      }
+      pairs.emplace_back(e.time, e.robot);
+    }
+    index = multi_robot::RobotIndex(pairs);
+  }
+  multi_robot::CombineStats combined_stats;
+  const std::vector<io::StampedPose> combined =
+      trajectories.size() == 1 && index.empty()
+          ? std::move(trajectories.front())
+          : multi_robot::CombineTrajectories(trajectories, index,
+                                             SecondsToDuration(options.tolerance), &combined_stats);
+  const auto m = eval::EvaluateRelations(relations.value(), combined, options);
   if (args.json) {
-    std::cout << ToJson(m, options).dump(2) << "\n";
+    nlohmann::json json = ToJson(m, options);
+    if (args.trajectories.size() > 1 || !index.empty()) {
+      json["trajectories"] = args.trajectories.size();
+      json["poses_dropped_by_index"] = combined_stats.dropped;
+      json["shared_timestamps"] = combined_stats.shared_times;
+    }
+    std::cout << json.dump(2) << "\n";
   } else {
     std::printf(
         "translation_mean=%.6f translation_std=%.6f rotation_mean_deg=%.6f rotation_std_deg=%.6f "
@@ -80,8 +121,14 @@ int RunEval(const EvalArgs& args, AppContext& context) {
                  "within %.6f s of one of their timestamps\n",
                  m.missing, m.total - m.filtered, options.tolerance);
   }
+  if (combined_stats.shared_times > 0) {
+    std::fprintf(stderr,
+                 "gridslam: warning: %ld timestamps appear in several trajectories; each is "
+                 "scored with the first trajectory's pose (give --index to choose)\n",
+                 combined_stats.shared_times);
+  }
   if (m.used == 0) {
-    return ReportError(InvalidInput("no relation could be scored", args.trajectory));
+    return ReportError(InvalidInput("no relation could be scored", args.trajectories.front()));
   }
   return kExitOk;
 }
@@ -90,8 +137,13 @@ RunFunction SetupEval(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<EvalArgs>();
   sub.add_option("RELATIONS", args->relations, "Relations file (t1 t2 x y z roll pitch yaw)")
       ->required();
-  sub.add_option("TRAJECTORY", args->trajectory, "Trajectory (timestamp x y theta, or TUM)")
+  sub.add_option("TRAJECTORY", args->trajectories,
+                 "Trajectory (timestamp x y theta, or TUM); several robots' trajectories of one "
+                 "merged map score relations between robots")
       ->required();
+  sub.add_option("--index", args->index,
+                 "index.txt (timestamp robot): which trajectory holds each timestamp (robot i = "
+                 "the i-th TRAJECTORY)");
   sub.add_flag("--json", args->json, "Print one JSON object");
   sub.add_option("--min-dt", args->min_dt, "Score only relations with |t2 - t1| >= S [s]");
   sub.add_option("--max-dt", args->max_dt,

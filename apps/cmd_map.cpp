@@ -39,6 +39,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
             {"appearance_queries", s.appearance_queries},
             {"appearance_candidates", s.appearance_candidates},
             {"verified", s.verified},
+            {"found_by_prior_refinement", s.prior_refined},
             {"accepted", s.accepted},
             {"rejected_gate", s.rejected_gate},
             {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},

@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "command.hpp"
@@ -59,6 +60,8 @@ int Main(int argc, char** argv) {
     app.exit(e);
     return kExitBadInput;
   }
+  // Log messages go to stderr: stdout carries results (eval's line, --print-config, JSON).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("gridslam"));
   spdlog::set_level(spdlog::level::from_str(log_level));
   spdlog::set_pattern("[%l] %v");
 

@@ -33,7 +33,7 @@ odometry=$("$bin" eval "$tmp/a/robot_0.relations" "$tmp/a/odometry.txt")
 awk -v t="$(metric translation_mean "$odometry")" 'BEGIN { exit !(t > 0.005) }' ||
   { echo "odometry: $odometry"; exit 1; }
 
-"$bin" simulate --world ambiguous --robots 3 --duration 150 -o "$tmp/m" > /dev/null
+"$bin" simulate --world ambiguous --robots 3 --duration 250 -o "$tmp/m" > /dev/null
 for f in robot_0.clf robot_1.clf robot_2.clf between.relations within.relations index.txt; do
   [ -s "$tmp/m/$f" ] || { echo "missing $f"; exit 1; }
 done

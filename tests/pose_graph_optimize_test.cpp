@@ -41,7 +41,7 @@ PoseGraph LoadChained(const std::string& path) {
   return result;
 }
 
-OptimizationReport Run(PoseGraph& graph, const std::string& method, int iterations,
+OptimizationReport RunMethod(PoseGraph& graph, const std::string& method, int iterations,
                        std::vector<double>* history = nullptr) {
   OptimizerOptions options;
   options.method = method;
@@ -66,14 +66,14 @@ TEST(PoseGraphOptimizeTest, SharedG2oGraphsFromTheOdometryGuess) {
     const double chi2_start = pose_graph::Chi2(start);
 
     PoseGraph sgd = start;
-    const OptimizationReport sgd_report = Run(sgd, "sgd", 100);
+    const OptimizationReport sgd_report = RunMethod(sgd, "sgd", 100);
     EXPECT_LT(sgd_report.chi2_final, 1e-3 * chi2_start);
 
     double gn_final = 0.0;
     for (const char* method : {"gn", "lm"}) {
       PoseGraph graph = start;
       std::vector<double> history{chi2_start};
-      const OptimizationReport report = Run(graph, method, 0, &history);
+      const OptimizationReport report = RunMethod(graph, method, 0, &history);
       for (std::size_t k = 1; k < history.size(); ++k) {
         EXPECT_LE(history[k], history[k - 1] * (1.0 + 1e-12)) << method << " iteration " << k;
       }
@@ -83,12 +83,12 @@ TEST(PoseGraphOptimizeTest, SharedG2oGraphsFromTheOdometryGuess) {
     }
 
     PoseGraph polished = start;
-    const OptimizationReport report = Run(polished, "sgd+gn", 0);
+    const OptimizationReport report = RunMethod(polished, "sgd+gn", 0);
     EXPECT_TRUE(report.converged);
     EXPECT_LE(report.chi2_final, gn_final * (1.0 + 1e-6));
     EXPECT_LE(report.chi2_final, sgd_report.chi2_final);
     // A local minimum: another Gauss-Newton run does not move it.
-    const OptimizationReport again = Run(polished, "gn", 0);
+    const OptimizationReport again = RunMethod(polished, "gn", 0);
     EXPECT_NEAR(again.chi2_final, report.chi2_final, 1e-6 * report.chi2_final);
   }
 }
@@ -105,7 +105,7 @@ TEST(PoseGraphOptimizeTest, SharedToroGraphsOptimizeAndRoundTrip) {
     auto read = io::ReadToro(path);
     ASSERT_TRUE(read.ok()) << read.error().ToString();
     PoseGraph graph = std::move(read).value();
-    const OptimizationReport report = Run(graph, "sgd+gn", 0);
+    const OptimizationReport report = RunMethod(graph, "sgd+gn", 0);
     EXPECT_TRUE(report.converged);
     EXPECT_LT(report.chi2_final, report.chi2_initial);
     for (const char* name : {"out.g2o", "out.graph"}) {

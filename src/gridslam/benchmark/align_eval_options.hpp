@@ -21,6 +21,16 @@ struct AlignEvalOptions {
   /// Also test pairs whose windows never separated between t1 and t2 (the local map kept cells
   /// from t1 until t2, so the two key maps share data and are not independent) [-].
   bool include_shared = false;
+  /// Check of the truth: the front end must be locally accurate where the two key maps were
+  /// built. The short relations (|t2 - t1| <= truth_check_max_dt) lying within
+  /// truth_check_history before a pair's scan and the end of its key map are compared with the
+  /// front end; a pair is tested only if its largest error stays within truth_max_error and
+  /// truth_max_error_deg (e.g. a front end sliding along a featureless corridor moves the robot
+  /// against its map, which makes the truth of T_a_b meaningless) [s], [s], [m], [deg].
+  double truth_check_max_dt = 10.0;
+  double truth_check_history = 30.0;
+  double truth_max_error = 0.05;
+  double truth_max_error_deg = 0.5;
   /// An accepted alignment is correct when its error is below both limits [m], [deg].
   double correct_translation = 0.1;
   double correct_rotation_deg = 1.0;
@@ -43,6 +53,14 @@ struct AlignEvalOptions {
       "Overlap criterion: true key-map centres at most this far apart [m]");
     v("include_shared", include_shared,
       "Also test pairs whose local-map windows never separated between t1 and t2");
+    v("truth_check_max_dt", truth_check_max_dt,
+      "Truth check: relations at most this long check the front end [s]");
+    v("truth_check_history", truth_check_history,
+      "Truth check: relations this long before a pair's scan are checked [s]");
+    v("truth_max_error", truth_max_error,
+      "Truth check: largest front-end translation error allowed near a pair [m]");
+    v("truth_max_error_deg", truth_max_error_deg,
+      "Truth check: largest front-end rotation error allowed near a pair [deg]");
     v("correct_translation", correct_translation, "Correct: translation error below this [m]");
     v("correct_rotation_deg", correct_rotation_deg, "Correct: rotation error below this [deg]");
     v("negatives", negatives, "Random negative pairs (true centres far apart); 0 = none");
@@ -57,6 +75,13 @@ struct AlignEvalOptions {
     GRIDSLAM_RETURN_IF_ERROR(Require(time_tolerance >= 0.0, "align_eval.time_tolerance >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(max_centre_distance > 0.0, "align_eval.max_centre_distance > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(truth_check_max_dt >= 0.0, "align_eval.truth_check_max_dt >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(truth_check_history >= 0.0, "align_eval.truth_check_history >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(truth_max_error > 0.0, "align_eval.truth_max_error > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(truth_max_error_deg > 0.0, "align_eval.truth_max_error_deg > 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(correct_translation > 0.0, "align_eval.correct_translation > 0"));
     GRIDSLAM_RETURN_IF_ERROR(

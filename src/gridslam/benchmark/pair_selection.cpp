@@ -4,8 +4,10 @@
 #include <cmath>
 #include <optional>
 #include <random>
-#include <set>
+#include <map>
 #include <utility>
+
+#include "gridslam/common/angles.hpp"
 
 namespace gridslam::benchmark {
 namespace {
@@ -61,13 +63,68 @@ std::vector<std::optional<Eigen::Vector2d>> TrueCentres(
   return centres;
 }
 
+/// The front end's error on one short relation; `begin` <= `end` are its two times.
+struct FrontEndCheck {
+  Time begin;
+  Time end;
+  double translation = 0.0;
+  double rotation = 0.0;
+};
+
+/// The front end's errors on the relations no longer than truth_check_max_dt, sorted by begin.
+std::vector<FrontEndCheck> FrontEndChecks(const KeyMapCatalog& catalog,
+                                          std::span<const eval::Relation> relations,
+                                          const AlignEvalOptions& options, bool laser) {
+  auto pose = [&](int f) {
+    const FrameRecord& frame = catalog.Frames()[static_cast<std::size_t>(f)];
+    return laser ? frame.T_odom_base * frame.T_base_laser : frame.T_odom_base;
+  };
+  std::vector<FrontEndCheck> checks;
+  for (const eval::Relation& relation : relations) {
+    if (std::abs(ToSeconds(relation.t2 - relation.t1)) > options.truth_check_max_dt) {
+      continue;
+    }
+    const int f1 = catalog.FindFrame(relation.t1, options.time_tolerance);
+    const int f2 = catalog.FindFrame(relation.t2, options.time_tolerance);
+    if (f1 < 0 || f2 < 0) {
+      continue;
+    }
+    const Pose2 error = Between(relation.T_1_2, Between(pose(f1), pose(f2)));
+    checks.push_back({std::min(relation.t1, relation.t2), std::max(relation.t1, relation.t2),
+                      error.translation().norm(), std::abs(NormalizeAngle(error.theta()))});
+  }
+  std::sort(checks.begin(), checks.end(),
+            [](const auto& a, const auto& b) { return a.begin < b.begin; });
+  return checks;
+}
+
+/// Adds the checks lying within [from, to] to the pair's truth check.
+void CheckTruth(std::span<const FrontEndCheck> checks, Time from, Time to, TestPair* pair) {
+  auto it = std::lower_bound(checks.begin(), checks.end(), from,
+                             [](const FrontEndCheck& c, Time t) { return c.begin < t; });
+  for (; it != checks.end() && it->begin <= to; ++it) {
+    if (it->end <= to) {
+      ++pair->truth_checks;
+      pair->truth_error_translation = std::max(pair->truth_error_translation, it->translation);
+      pair->truth_error_rotation = std::max(pair->truth_error_rotation, it->rotation);
+    }
+  }
+}
+
 }  // namespace
 
 PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
                                   std::span<const eval::Relation> relations,
                                   const AlignEvalOptions& options, bool relations_in_laser_frame) {
   PositiveSelection selection;
-  std::set<std::pair<int, int>> seen;
+  std::map<std::pair<int, int>, std::size_t> seen;  // key-map pair -> index in pairs
+  const std::vector<FrontEndCheck> checks =
+      FrontEndChecks(catalog, relations, options, relations_in_laser_frame);
+  const Duration history = SecondsToDuration(options.truth_check_history);
+  auto last_time = [&](int key_map) {
+    const int f = catalog.KeyMaps()[static_cast<std::size_t>(key_map)].last_frame;
+    return catalog.Frames()[static_cast<std::size_t>(f)].time;
+  };
   for (const eval::Relation& relation : relations) {
     ++selection.relations;
     if (!(std::abs(ToSeconds(relation.t2 - relation.t1)) > options.min_time_gap)) {
@@ -100,10 +157,29 @@ PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
       ++selection.shared;
       continue;
     }
-    if (!seen.insert(std::minmax(pair.key_a, pair.key_b)).second) {
-      ++selection.duplicates;
+    CheckTruth(checks, relation.t1 - history, last_time(pair.key_a), &pair);
+    CheckTruth(checks, relation.t2 - history, last_time(pair.key_b), &pair);
+    if (pair.truth_error_translation > options.truth_max_error ||
+        pair.truth_error_rotation > DegToRad(options.truth_max_error_deg)) {
+      ++selection.unreliable;
       continue;
     }
+    const auto [it, inserted] =
+        seen.emplace(std::make_pair(pair.key_a, pair.key_b), selection.pairs.size());
+    if (!inserted) {
+      // Another relation between the same key maps: how far its truth is from the first one's.
+      ++selection.duplicates;
+      TestPair& first = selection.pairs[it->second];
+      const Pose2 difference = Between(first.T_a_b_true, pair.T_a_b_true);
+      ++first.relations;
+      first.truth_spread_translation =
+          std::max(first.truth_spread_translation, difference.translation().norm());
+      first.truth_spread_rotation =
+          std::max(first.truth_spread_rotation, std::abs(NormalizeAngle(difference.theta())));
+      continue;
+    }
+    pair.relations = 1;
+    selection.unchecked += pair.truth_checks == 0 ? 1 : 0;
     selection.pairs.push_back(pair);
   }
   return selection;

@@ -8,7 +8,9 @@
 // placing each scan in its key map. The pair is tested when the key maps overlap
 // (|T_a_b.translation()| <= max_centre_distance, the distance of the window centres) and, unless
 // include_shared, when the local map forgot a's cells before b was taken (so both key maps are
-// built from different data). Each key-map pair is tested once (the first relation defines it).
+// built from different data). The truth rests on the front end being locally accurate, which is
+// checked against the short relations around both scans (truth_check_*): pairs where it is not
+// are left out. Each key-map pair is tested once (the first relation defines it).
 //
 // Negative pairs have no correct answer: key maps whose true centres are farther apart than
 // negative_min_distance (with 15 m windows and a 20 m default their windows cannot overlap), drawn
@@ -37,6 +39,16 @@ struct TestPair {
   /// Distance between the key maps' centres (true, or the front end's for negatives without
   /// ground truth) [m].
   double centre_distance = 0.0;
+  /// Positive pairs: relations giving this key-map pair, and the largest difference between the
+  /// truth they give and T_a_b_true (the truth's own uncertainty) [m], [rad].
+  int relations = 0;
+  double truth_spread_translation = 0.0;
+  double truth_spread_rotation = 0.0;
+  /// Positive pairs: short relations checking the front end around t1 and t2, and the largest
+  /// front-end error among them [m], [rad].
+  int truth_checks = 0;
+  double truth_error_translation = 0.0;
+  double truth_error_rotation = 0.0;
 };
 
 struct PositiveSelection {
@@ -47,6 +59,8 @@ struct PositiveSelection {
   long same_key_map = 0;    ///< Revisits with both scans in one key map.
   long too_far = 0;         ///< Revisits whose key maps' centres are too far apart.
   long shared = 0;          ///< Revisits whose key maps share local-map data (skipped).
+  long unreliable = 0;      ///< Revisits where the front end was locally inaccurate (skipped).
+  long unchecked = 0;       ///< Pairs tested without a short relation to check the front end.
   long duplicates = 0;      ///< Revisits of a key-map pair already tested.
 };
 

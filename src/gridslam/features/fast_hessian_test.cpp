@@ -81,8 +81,8 @@ TEST(FastHessianTest, BoxHessianMatchesExplicitKernels) {
   std::mt19937 rng(11);
   cv::Mat image(260, 240, CV_8UC1);
   std::uniform_int_distribution<int> value(0, 255);
-  for (auto it = image.begin<std::uint8_t>(); it != image.end<std::uint8_t>(); ++it) {
-    *it = static_cast<std::uint8_t>(value(rng));
+  for (std::uint8_t& pixel : cv::Mat_<std::uint8_t>(image)) {
+    pixel = static_cast<std::uint8_t>(value(rng));
   }
   cv::GaussianBlur(image, image, cv::Size(0, 0), 2.0);
   const IntegralImage integral(image);

@@ -12,8 +12,8 @@ cv::Mat SmoothNoise(int width, int height, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> value(0, 255);
   cv::Mat image(height, width, CV_8UC1);
-  for (auto it = image.begin<std::uint8_t>(); it != image.end<std::uint8_t>(); ++it) {
-    *it = static_cast<std::uint8_t>(value(rng));
+  for (std::uint8_t& pixel : cv::Mat_<std::uint8_t>(image)) {
+    pixel = static_cast<std::uint8_t>(value(rng));
   }
   cv::GaussianBlur(image, image, cv::Size(0, 0), 1.5);
   return image;
@@ -23,7 +23,7 @@ cv::Mat SmoothNoise(int width, int height, std::uint32_t seed) {
 // at every sample where the filter fits, and only there.
 TEST(ResponseLayerTest, ComputeMatchesPerPixelHessian) {
   const IntegralImage integral(SmoothNoise(131, 97, 1));
-  for (const int step : {1, 2, 4}) {
+  for (const int step : {1, 2, 4, 8}) {
     for (const int size : {9, 15, 27, 51}) {
       ResponseLayer layer;
       layer.Compute(integral, size, step);

@@ -49,23 +49,9 @@ inline float FastAtan2(float y, float x) {
   return y < 0.0F ? -a : a;
 }
 
-// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy) (pixel centres at
-// integer coordinates, so the boundary left of pixel px lies at px − 0.5): dx = right − left,
-// dy = bottom − top, as box sums [intensity · px²].
-Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
-  const int px = FloorToInt(cx + 1.0F);
-  const int py = FloorToInt(cy + 1.0F);
-  if (px - h >= 0 && py - h >= 0 && px + h <= ii.width() && py + h <= ii.height()) {
-    const std::int32_t* top = ii.Row(py - h);
-    const std::int32_t* mid = ii.Row(py);
-    const std::int32_t* bot = ii.Row(py + h);
-    const int a = px - h;
-    const int c = px + h;
-    const std::int32_t dx = bot[c] - 2 * bot[px] + bot[a] - top[c] + 2 * top[px] - top[a];
-    const std::int32_t dy = bot[c] - bot[a] - 2 * mid[c] + 2 * mid[a] + top[c] - top[a];
-    return {static_cast<float>(dx), static_cast<float>(dy)};
-  }
-  // Near the border: difference of the means of the parts inside, scaled to box-sum units.
+// Haar wavelets where a box leaves the image: the difference of the means of the halves' parts
+// inside, scaled to box-sum units; no response where a half lies wholly outside.
+Haar ClippedHaar(const IntegralImage& ii, int px, int py, int h) {
   const auto half_area = static_cast<float>(2 * h * h);
   int area_a = 0;
   int area_b = 0;
@@ -81,6 +67,25 @@ Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
     r.dy = (bottom - top) * half_area;
   }
   return r;
+}
+
+// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy) (pixel centres at
+// integer coordinates, so the boundary left of pixel px lies at px − 0.5): dx = right − left,
+// dy = bottom − top, as box sums [intensity · px²].
+inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
+  const int px = FloorToInt(cx + 1.0F);
+  const int py = FloorToInt(cy + 1.0F);
+  if (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height()) {
+    return ClippedHaar(ii, px, py, h);
+  }
+  const std::int32_t* top = ii.Row(py - h);
+  const std::int32_t* mid = ii.Row(py);
+  const std::int32_t* bot = ii.Row(py + h);
+  const int a = px - h;
+  const int c = px + h;
+  const std::int32_t dx = bot[c] - 2 * bot[px] + bot[a] - top[c] + 2 * top[px] - top[a];
+  const std::int32_t dy = bot[c] - bot[a] - 2 * mid[c] + 2 * mid[a] + top[c] - top[a];
+  return {static_cast<float>(dx), static_cast<float>(dy)};
 }
 
 // Orientation samples: grid points (i, j) [units of s] with i² + j² < 36 and their Gaussian

@@ -73,12 +73,12 @@ TEST(SurfDescriptorTest, ExtendedSumsToTheStandardDescriptor) {
   ComputeSurfDescriptor(integral, 97.3F, 88.6F, 3.1F, -2.0F, true, d128.data());
   // Per sub-region: Σdx = Σdx(dy<0) + Σdx(dy≥0), Σ|dx| likewise, Σdy and Σ|dy| by the sign of dx.
   std::vector<float> merged(kSurfDescriptorSize);
-  for (int r = 0; r < 16; ++r) {
+  for (std::size_t r = 0; r < 16; ++r) {
     const float* e = d128.data() + 8 * r;
-    merged[static_cast<std::size_t>(4 * r + 0)] = e[0] + e[2];
-    merged[static_cast<std::size_t>(4 * r + 1)] = e[4] + e[6];
-    merged[static_cast<std::size_t>(4 * r + 2)] = e[1] + e[3];
-    merged[static_cast<std::size_t>(4 * r + 3)] = e[5] + e[7];
+    merged[4 * r + 0] = e[0] + e[2];
+    merged[4 * r + 1] = e[4] + e[6];
+    merged[4 * r + 2] = e[1] + e[3];
+    merged[4 * r + 3] = e[5] + e[7];
   }
   const double norm = Norm(merged);
   ASSERT_GT(norm, 0.0);
@@ -91,7 +91,7 @@ TEST(SurfDescriptorTest, UprightRampDescriptorHasOnlyXResponses) {
   const IntegralImage integral(Ramp(121, 0.0, 0.9));
   std::vector<float> d(kSurfDescriptorSize);
   ComputeSurfDescriptor(integral, 60.0F, 60.0F, 2.0F, 0.0F, false, d.data());
-  for (int r = 0; r < 16; ++r) {
+  for (std::size_t r = 0; r < 16; ++r) {
     const float* v = d.data() + 4 * r;
     EXPECT_GT(v[0], 0.0F) << r;
     EXPECT_NEAR(v[0], v[2], 1e-6) << r;  // every dx positive

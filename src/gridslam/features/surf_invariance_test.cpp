@@ -33,7 +33,7 @@ struct Rigid {
   }
 };
 
-// Least-squares rigid fit b ≈ T·a (2-D Kabsch, no scale).
+// Least-squares rigid fit b ≈ T_b_a·a (2-D Kabsch, no scale).
 Rigid FitRigid(const std::vector<cv::Point2d>& a, const std::vector<cv::Point2d>& b) {
   cv::Point2d ca;
   cv::Point2d cb;
@@ -51,15 +51,15 @@ Rigid FitRigid(const std::vector<cv::Point2d>& a, const std::vector<cv::Point2d>
     dot += p.x * q.x + p.y * q.y;
     cross += p.x * q.y - p.y * q.x;
   }
-  Rigid T{std::atan2(cross, dot), {}};
-  T.t = cb - T * ca;
-  return T;
+  Rigid T_b_a{std::atan2(cross, dot), {}};
+  T_b_a.t = cb - T_b_a * ca;
+  return T_b_a;
 }
 
 // Exhaustive 2-point hypotheses over the matches, the one with most inliers (within
 // inlier_px) refined by least squares on its inliers.
 struct RobustFit {
-  Rigid T;
+  Rigid T_b_a;
   int inliers = 0;
 };
 RobustFit FitRigidRobust(const std::vector<cv::Point2d>& a, const std::vector<cv::Point2d>& b,
@@ -72,11 +72,11 @@ RobustFit FitRigidRobust(const std::vector<cv::Point2d>& a, const std::vector<cv
       if (cv::norm(a[j] - a[i]) < 20.0) {
         continue;
       }
-      const Rigid T = FitRigid({a[i], a[j]}, {b[i], b[j]});
+      const Rigid T_b_a = FitRigid({a[i], a[j]}, {b[i], b[j]});
       std::vector<cv::Point2d> in_a;
       std::vector<cv::Point2d> in_b;
       for (std::size_t k = 0; k < a.size(); ++k) {
-        if (cv::norm(T * a[k] - b[k]) < inlier_px) {
+        if (cv::norm(T_b_a * a[k] - b[k]) < inlier_px) {
           in_a.push_back(a[k]);
           in_b.push_back(b[k]);
         }
@@ -89,7 +89,7 @@ RobustFit FitRigidRobust(const std::vector<cv::Point2d>& a, const std::vector<cv
     }
   }
   if (best.inliers >= 2) {
-    best.T = FitRigid(best_a, best_b);
+    best.T_b_a = FitRigid(best_a, best_b);
   }
   return best;
 }
@@ -126,7 +126,7 @@ Features Describe(const cv::Ptr<cv::Feature2D>& detector, const cv::Mat& image) 
 // True if the Fast-Hessian search of the keypoint's octave covers point p in an image.
 bool Searchable(const cv::KeyPoint& kp, cv::Point2d p, const SurfOptions& options) {
   const int step = options.initial_step << kp.octave;
-  const double margin = (FilterSize(kp.octave, options.layers_per_octave - 1) - 1) / 2 + step;
+  const int margin = (FilterSize(kp.octave, options.layers_per_octave - 1) - 1) / 2 + step;
   return p.x >= margin && p.y >= margin && p.x <= kSize - 1 - margin && p.y <= kSize - 1 - margin;
 }
 
@@ -189,9 +189,9 @@ struct Case {
 ImagePair Rerendered(std::uint32_t seed, double deg, cv::Point2d shift) {
   const std::vector<cv::Vec4f> walls = MakeSyntheticWalls(kSize, seed);
   ImagePair pair = Transformed(MakeSyntheticKeyMap(kSize, seed), deg, shift);
-  const Rigid& T = pair.T_b_a;
-  const cv::Matx23d m(std::cos(T.theta), -std::sin(T.theta), T.t.x, std::sin(T.theta),
-                      std::cos(T.theta), T.t.y);
+  const Rigid& T_b_a = pair.T_b_a;
+  const cv::Matx23d m(std::cos(T_b_a.theta), -std::sin(T_b_a.theta), T_b_a.t.x,
+                      std::sin(T_b_a.theta), std::cos(T_b_a.theta), T_b_a.t.y);
   pair.b = DistanceImage8U(RenderObstacleImage(walls, kSize, m), 30.0);
   return pair;
 }
@@ -215,9 +215,9 @@ TEST_P(SurfInvarianceTest, RepeatableMatchingAndRotationRecovered) {
     const Features fb = Describe(surf, pair.b);
     const double repeatability = Repeatability(fa, fb, pair.T_b_a, options);
     const MatchResult m = Match(fa, fb, pair.T_b_a);
-    const double angle_error = std::remainder(m.fit.T.theta - pair.T_b_a.theta, 2.0 * kPi);
+    const double angle_error = std::remainder(m.fit.T_b_a.theta - pair.T_b_a.theta, 2.0 * kPi);
     const cv::Point2d centre(kSize / 2.0, kSize / 2.0);
-    const double centre_error = cv::norm(m.fit.T * centre - pair.T_b_a * centre);
+    const double centre_error = cv::norm(m.fit.T_b_a * centre - pair.T_b_a * centre);
     std::printf(
         "%s %.0f deg seed %u: %zu/%zu keypoints, repeatability %.2f, mutual %d, correct %d, "
         "inliers %d, angle error %.3f deg, centre error %.2f px\n",
@@ -294,7 +294,7 @@ TEST(SurfVariantsTest, UprightAndExtended) {
       Match(Describe(surf128, rotated.a), Describe(surf128, rotated.b), rotated.T_b_a);
   EXPECT_GE(extended.correct, 20);
   EXPECT_GE(static_cast<double>(extended.correct) / extended.mutual, 0.55);
-  EXPECT_LT(std::abs(std::remainder(extended.fit.T.theta - rotated.T_b_a.theta, 2.0 * kPi)),
+  EXPECT_LT(std::abs(std::remainder(extended.fit.T_b_a.theta - rotated.T_b_a.theta, 2.0 * kPi)),
             1.0 * kPi / 180.0);
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -137,7 +136,7 @@ void RollingWindow::ApplyMiss(std::size_t index) {
     obstacle = 0;
     --num_obstacles_;
     if (track_surfaces_) {
-      if (!getenv("FE_KEEP")) surfaces_.data()[index] = CellSurface{};
+      surfaces_.data()[index] = CellSurface{};
     }
     MarkChanged(index);
   }

@@ -1,5 +1,6 @@
 #include "gridslam/grid/scan_points.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gridslam {
@@ -76,6 +77,10 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
     if (hit[k] == 0) {
       continue;
     }
+    // Neighbours within neighbour_distance, or within six beam spacings at this range (walls
+    // seen at up to ~80 degrees of incidence), whichever is larger.
+    const double spacing = 6.0 * scan.ranges[k] * std::abs(scan.angle_increment);
+    const double limit2 = std::max(max_d2, spacing * spacing);
     int count = 0;
     for (int offset = -2; offset <= 2; ++offset) {
       const auto m = static_cast<std::ptrdiff_t>(k) + offset;
@@ -83,7 +88,7 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
         continue;
       }
       const auto um = static_cast<std::size_t>(m);
-      if (hit[um] != 0 && (laser_points[um] - laser_points[k]).squaredNorm() <= max_d2) {
+      if (hit[um] != 0 && (laser_points[um] - laser_points[k]).squaredNorm() <= limit2) {
         window[count++] = laser_points[um];
       }
     }

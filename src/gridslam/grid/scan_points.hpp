@@ -28,7 +28,8 @@ struct ScanPoints {
 /// Converts `scan` with the laser mounting `T_base_laser`. Returns farther than `max_range` [m]
 /// are dropped (they count neither as hits nor as no-returns); readings that are not finite or at
 /// or below range_min are ignored. Normals use up to two hits on either side of a beam that lie
-/// within `neighbour_distance` [m] of it.
+/// within `neighbour_distance` [m] of it, or within six beam spacings at its range if that is
+/// more (far walls seen at a grazing angle).
 ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, double max_range,
                              double neighbour_distance = 0.25);
 

@@ -13,6 +13,9 @@ Status LoopClosureOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(gate_xy > 0.0 && gate_theta > 0.0, "loop_closure gates > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(sigma_xy > 0.0 && sigma_theta > 0.0, "loop_closure sigmas > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_join_matches >= 1, "loop_closure.min_join_matches >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(min_consistent_gated >= 2, "loop_closure.min_consistent_gated >= 2"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(gated_window >= 1, "loop_closure.gated_window >= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(appearance_every >= 0, "loop_closure.appearance_every >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(appearance_candidates >= 0, "loop_closure.appearance_candidates >= 0"));

@@ -28,6 +28,10 @@ struct LoopClosureOptions {
   double gate_xy_per_m = 0.04;
   double gate_theta = 0.05;
   double gate_theta_per_m = 0.004;
+  /// Closures outside the gate are accepted when this many (including the new one), from key
+  /// maps at most gated_window key maps apart, are mutually consistent [-].
+  int min_consistent_gated = 3;
+  int gated_window = 30;
   /// Loop edges: standard deviations of the measured relative pose [m, rad].
   double sigma_xy = 0.03;
   double sigma_theta = 0.005;
@@ -44,6 +48,15 @@ struct LoopClosureOptions {
   int appearance_candidates = 3;
   /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
   double prune_chi2 = 25.0;
+  /// When feature alignment of a prior-based candidate fails and the uncertainty distance is
+  /// below prior_max_uncertainty [m], refine the predicted transform on the distance field and
+  /// accept it if at least prior_min_inliers of the points agree [-], the weaker translation
+  /// direction keeps prior_min_constraint of the stronger's information [-] (no corridor
+  /// sliding), and the grids verify.
+  bool prior_refinement = true;
+  double prior_max_uncertainty = 10.0;
+  double prior_min_inliers = 0.6;
+  double prior_min_constraint = 0.1;
   RefinementOptions refinement;
 
   template <class V>
@@ -60,6 +73,9 @@ struct LoopClosureOptions {
     v("gate_xy_per_m", gate_xy_per_m, "... plus this per metre of uncertainty distance [m/m]");
     v("gate_theta", gate_theta, "Consistency gate: rotation tolerance [rad] ...");
     v("gate_theta_per_m", gate_theta_per_m, "... plus this per metre [rad/m]");
+    v("min_consistent_gated", min_consistent_gated,
+      "Mutually consistent gated closures that are accepted together [-]");
+    v("gated_window", gated_window, "... from key maps at most this many apart [-]");
     v("sigma_xy", sigma_xy, "Loop edge standard deviation, translation [m]");
     v("sigma_theta", sigma_theta, "Loop edge standard deviation, rotation [rad]");
     v("min_join_matches", min_join_matches,
@@ -70,6 +86,13 @@ struct LoopClosureOptions {
       "Run the global appearance search for every n-th key map (0 = never) [-]");
     v("appearance_candidates", appearance_candidates, "Best-voted key maps aligned [-]");
     v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
+    v("prior_refinement", prior_refinement,
+      "Fall back to refining the predicted transform when feature alignment fails");
+    v("prior_max_uncertainty", prior_max_uncertainty,
+      "... only below this uncertainty distance [m]");
+    v("prior_min_inliers", prior_min_inliers, "... accepting at least this inlier fraction [-]");
+    v("prior_min_constraint", prior_min_constraint,
+      "... and this ratio of weakest to strongest translation information [-]");
     v.Section("refinement", refinement, "Refinement of alignments on the distance field");
   }
   [[nodiscard]] Status Validate() const;

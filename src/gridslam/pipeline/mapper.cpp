@@ -105,7 +105,7 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
                                    g.sequential_sigma_theta + g.sequential_sigma_theta_per_m * d);
     if (g.sequential_edges == "alignment" && previous.alignable && current.alignable) {
       start = std::chrono::steady_clock::now();
-      const std::optional<Pose2> aligned = TryAlign(previous.id, id);
+      const std::optional<Pose2> aligned = TryAlign(previous.id, id, nullptr);
       stats.seconds_alignment += SecondsSince(start);
       if (aligned.has_value() && IsApprox(*aligned, edge.T_from_to, 0.1, 0.02)) {
         edge.T_from_to = *aligned;

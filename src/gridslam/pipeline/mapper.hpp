@@ -56,6 +56,7 @@ struct MapperStats {
   long appearance_queries = 0;
   long appearance_candidates = 0;
   long verified = 0;     ///< Alignments accepted by matching + verification.
+  long prior_refined = 0;  ///< Of which: found by refinement from the prediction (no features).
   long accepted = 0;     ///< Loop edges added.
   long rejected_gate = 0;
   long pruned = 0;

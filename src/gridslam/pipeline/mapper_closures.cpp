@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
+#include "gridslam/common/logging.hpp"
 #include "gridslam/loop_closure/grid_refinement.hpp"
 #include "gridslam/matching/align.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
 
-std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k) {
+std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   const matching::VerificationInput verification =
@@ -17,7 +20,9 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k) {
   const matching::AlignResult result = matching::Align(
       a.description.features, b.description.features, options.matching, &verification);
   if (!result.accepted) {
-    return std::nullopt;
+    return prior != nullptr && options.loop_closure.prior_refinement
+               ? RefineFromPrior(i, k, *prior, verification)
+               : std::nullopt;
   }
   ++stats.verified;
   Pose2 T_a_b = result.T_a_b;
@@ -30,6 +35,45 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k) {
     }
   }
   return T_a_b;
+}
+
+namespace {
+
+// The loop i -> k (measured), k -> k2 (estimate in k's component), k2 -> i2 (measured),
+// i2 -> i (estimate in i's component) closes within the tolerances.
+bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes,
+                double tolerance_xy, double tolerance_theta) {
+  const auto& n = [&](int id) -> const Node& { return nodes[static_cast<std::size_t>(id)]; };
+  const Pose2 loop = a.T_i_k * Between(n(a.k).estimate, n(b.k).estimate) * b.T_i_k.Inverse() *
+                     Between(n(b.i).estimate, n(a.i).estimate);
+  return loop.translation().norm() < tolerance_xy && std::abs(loop.theta()) < tolerance_theta;
+}
+
+}  // namespace
+
+std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_i_k,
+                                                   const matching::VerificationInput& verification) {
+  const Node& a = nodes[static_cast<std::size_t>(i)];
+  const Node& b = nodes[static_cast<std::size_t>(k)];
+  loop_closure::RefinementOptions refinement = options.loop_closure.refinement;
+  refinement.max_distance = std::max(refinement.max_distance, 0.5);
+  const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
+      b.description.obstacle_points, a.description.distance, T_i_k, refinement);
+  if (!refined.ok || refined.inlier_fraction < options.loop_closure.prior_min_inliers) {
+    return std::nullopt;
+  }
+  // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(refined.hessian.topLeftCorner<2, 2>());
+  if (eig.eigenvalues()(0) < options.loop_closure.prior_min_constraint * eig.eigenvalues()(1)) {
+    return std::nullopt;
+  }
+  const matching::VerificationResult verified =
+      matching::VerifyAlignment(refined.T_a_b, verification, options.matching.verification);
+  if (!verified.accepted) {
+    return std::nullopt;
+  }
+  ++stats.prior_refined;
+  return refined.T_a_b;
 }
 
 bool Mapper::Impl::SearchPriorCandidates(int k) {
@@ -79,7 +123,10 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
   bool accepted_any = false;
   for (const int i : chosen) {
     ++stats.candidates;
-    const std::optional<Pose2> measured = TryAlign(i, k);
+    const Pose2 prior = Between(nodes[static_cast<std::size_t>(i)].estimate, current.estimate);
+    const std::optional<Pose2> measured =
+        distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty ? TryAlign(i, k, &prior)
+                                                                        : TryAlign(i, k, nullptr);
     if (!measured.has_value()) {
       continue;
     }
@@ -88,41 +135,69 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     const Pose2 error = Between(predicted, *measured);
     const double u = distance[static_cast<std::size_t>(i)];
     ClosureRecord record{i, k, *measured, "accepted", false};
-    if (error.translation().norm() > lc.gate_xy + lc.gate_xy_per_m * u ||
-        std::abs(error.theta()) > lc.gate_theta + lc.gate_theta_per_m * u) {
-      record.outcome = "gate";
-      ++stats.rejected_gate;
-      closures.push_back(record);
-      continue;
+    const bool in_gate = error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
+                         std::abs(error.theta()) <= lc.gate_theta + lc.gate_theta_per_m * u;
+    std::vector<PendingJoin> group = {{i, k, *measured}};
+    if (!in_gate) {
+      // A closure outside the gate is kept; once enough recent gated closures agree with each
+      // other (the loops they form with the graph close), the estimate is what was wrong, and
+      // they are accepted together (DESIGN.md 1.6: pairwise consistency of several closures).
+      for (const PendingJoin& g : gated) {
+        if (g.k != k && k - g.k <= lc.gated_window &&
+            Consistent(group.front(), g, nodes, lc.pairwise_xy, lc.pairwise_theta)) {
+          group.push_back(g);
+        }
+      }
+      if (static_cast<int>(group.size()) < lc.min_consistent_gated) {
+        record.outcome = "gate";
+        ++stats.rejected_gate;
+        GRIDSLAM_LOG_DEBUG("closure {}-{} gated: error {:.3f} m {:.3f} rad, uncertainty {:.1f} m",
+                           i, k, error.translation().norm(), error.theta(), u);
+        closures.push_back(record);
+        gated.push_back(group.front());
+        continue;
+      }
+      GRIDSLAM_LOG_DEBUG("closure {}-{} accepted with {} consistent gated closures", i, k,
+                         group.size() - 1);
+      gated.erase(std::remove_if(gated.begin(), gated.end(),
+                                 [&](const PendingJoin& g) {
+                                   return std::any_of(group.begin(), group.end(),
+                                                      [&](const PendingJoin& m) {
+                                                        return m.i == g.i && m.k == g.k;
+                                                      });
+                                 }),
+                  gated.end());
     }
-    EdgeRecord edge;
-    edge.from = i;
-    edge.to = k;
-    edge.T_from_to = *measured;
-    edge.information = Information(lc.sigma_xy, lc.sigma_theta);
-    edge.loop = true;
-    edge.closure = static_cast<int>(closures.size());
-    closures.push_back(record);
-    AddEdge(edge, options.graph.loop_uncertainty);
-    ++stats.accepted;
-    accepted_any = true;
+    for (std::size_t m = 0; m < group.size(); ++m) {
+      EdgeRecord edge;
+      edge.from = group[m].i;
+      edge.to = group[m].k;
+      edge.T_from_to = group[m].T_i_k;
+      edge.information = Information(lc.sigma_xy, lc.sigma_theta);
+      edge.loop = true;
+      if (m == 0) {
+        edge.closure = static_cast<int>(closures.size());
+        closures.push_back(record);
+      } else {
+        for (ClosureRecord& c : closures) {
+          if (c.from == edge.from && c.to == edge.to && c.outcome == "gate") {
+            c.outcome = "accepted";
+            --stats.rejected_gate;
+            edge.closure = static_cast<int>(&c - closures.data());
+          }
+        }
+      }
+      AddEdge(edge, options.graph.loop_uncertainty);
+      ++stats.accepted;
+    }
+    // Only closures that disagree with the estimate make online optimization worth its cost.
+    accepted_any = accepted_any || !in_gate ||
+                   error.translation().norm() > options.graph.online_trigger_xy ||
+                   std::abs(error.theta()) > options.graph.online_trigger_theta;
   }
   return accepted_any;
 }
 
-namespace {
-
-// The loop i -> k (measured), k -> k2 (estimate in k's component), k2 -> i2 (measured),
-// i2 -> i (estimate in i's component) closes within the tolerances.
-bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes,
-                double tolerance_xy, double tolerance_theta) {
-  const auto& n = [&](int id) -> const Node& { return nodes[static_cast<std::size_t>(id)]; };
-  const Pose2 loop = a.T_i_k * Between(n(a.k).estimate, n(b.k).estimate) * b.T_i_k.Inverse() *
-                     Between(n(b.i).estimate, n(a.i).estimate);
-  return loop.translation().norm() < tolerance_xy && std::abs(loop.theta()) < tolerance_theta;
-}
-
-}  // namespace
 
 bool Mapper::Impl::SearchAppearance(int k) {
   const loop_closure::LoopClosureOptions& lc = options.loop_closure;
@@ -134,7 +209,7 @@ bool Mapper::Impl::SearchAppearance(int k) {
       [&](int node) { return FindComponent(nodes[static_cast<std::size_t>(node)].robot) != component; });
   for (const loop_closure::AppearanceVote& vote : votes) {
     ++stats.appearance_candidates;
-    const std::optional<Pose2> measured = TryAlign(vote.node, k);
+    const std::optional<Pose2> measured = TryAlign(vote.node, k, nullptr);
     if (!measured.has_value()) {
       continue;
     }

@@ -13,6 +13,7 @@
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/loop_closure/appearance_index.hpp"
 #include "gridslam/loop_closure/uncertainty_graph.hpp"
+#include "gridslam/matching/grid_verification.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 #include "gridslam/pose_graph/sgd_optimizer.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
@@ -89,7 +90,14 @@ struct Mapper::Impl {
   [[nodiscard]] Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) const;
 
   // mapper_closures.cpp
-  std::optional<Pose2> TryAlign(int i, int k);
+  /// Feature alignment of k to i (refined, verified); with a `prior` (T_i_k predicted), a failed
+  /// feature alignment falls back to RefineFromPrior.
+  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior);
+  /// Grid-to-grid refinement from a predicted transform, accepted only if well constrained and
+  /// verified.
+  std::optional<Pose2> RefineFromPrior(int i, int k, const Pose2& T_i_k,
+                                       const matching::VerificationInput& verification);
+  /// True when an accepted closure calls for online optimization.
   bool SearchPriorCandidates(int k);
   bool SearchAppearance(int k);
   void Join(int k, const std::vector<PendingJoin>& matches);
@@ -108,6 +116,7 @@ struct Mapper::Impl {
   std::vector<ClosureRecord> closures;
   std::vector<JoinRecord> joins;
   std::vector<PendingJoin> pending;
+  std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
   loop_closure::UncertaintyGraph uncertainty;
   loop_closure::AppearanceIndex appearance;
   std::unique_ptr<pose_graph::SgdOptimizer> sgd;

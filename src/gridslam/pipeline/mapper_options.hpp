@@ -20,8 +20,11 @@ struct GraphOptions {
   double sequential_sigma_theta_per_m = 0.002;  ///< [rad/m]
   /// Weight of a loop edge in the uncertainty distance (DESIGN 1.6) [m].
   double loop_uncertainty = 0.5;
-  /// SGD iterations run after each accepted closure (online, incremental) [-].
-  int online_iterations = 10;
+  /// SGD iterations run after a key map whose accepted closures disagree with the current
+  /// estimate by more than online_trigger_xy / online_trigger_theta (online, incremental) [-].
+  int online_iterations = 5;
+  double online_trigger_xy = 0.05;      ///< [m]
+  double online_trigger_theta = 0.01;  ///< [rad]
   /// Final optimization of the whole graph: gn, lm, sgd+gn, sgd or none.
   std::string final_method = "lm";
   /// Rounds of final optimization + pruning of inconsistent loop edges [-].
@@ -41,7 +44,11 @@ struct GraphOptions {
       "... plus this per metre [rad/m]");
     v("loop_uncertainty", loop_uncertainty,
       "Weight of a loop edge in the uncertainty distance of the gates [m]");
-    v("online_iterations", online_iterations, "SGD iterations after each accepted closure [-]");
+    v("online_iterations", online_iterations,
+      "SGD iterations after a key map with accepted closures that move the estimate [-]");
+    v("online_trigger_xy", online_trigger_xy,
+      "Optimize online when a closure differs from the estimate by more than this [m] ...");
+    v("online_trigger_theta", online_trigger_theta, "... or by more than this [rad]");
     v("final_method", final_method, "Final optimization: gn, lm, sgd+gn, sgd or none");
     v("prune_rounds", prune_rounds, "Rounds of final optimization and loop-edge pruning [-]");
     v("interpolate_corrections", interpolate_corrections,

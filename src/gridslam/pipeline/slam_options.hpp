@@ -13,6 +13,7 @@
 #include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/io/carmen_options.hpp"
 #include "gridslam/matching/align.hpp"
+#include "gridslam/multi_robot/log_split.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/simulation/simulation_options.hpp"
@@ -31,6 +32,7 @@ struct SlamOptions {
   fusion::FusionOptions fusion;  ///< Global map fusion.
   simulation::SimulationOptions simulation;  ///< `gridslam simulate`.
   benchmark::AlignEvalOptions align_eval;  ///< `gridslam align-eval` (DESIGN.md 3.2).
+  multi_robot::SplitOptions split;  ///< `gridslam split` (one log as several robots).
 
   template <class V>
   void Visit(V& v) {
@@ -47,6 +49,7 @@ struct SlamOptions {
     v.Section("fusion", fusion, "Global map fusion (DESIGN.md 1.8)");
     v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
     v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");
+    v.Section("split", split, "Cutting one log into several robots (gridslam split)");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(log.Validate());
@@ -60,6 +63,7 @@ struct SlamOptions {
     GRIDSLAM_RETURN_IF_ERROR(fusion.Validate());
     GRIDSLAM_RETURN_IF_ERROR(simulation.Validate());
     GRIDSLAM_RETURN_IF_ERROR(align_eval.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(split.Validate());
     return Status::Ok();
   }
 };

@@ -48,9 +48,9 @@ class NormalEquations {
                 double* chi2) const;
   /// Fills H and b at poses x.
   void Linearize(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel);
-  /// Factorizes H + lambda I; false on a numerical failure.
-  bool Factorize(double lambda) { return cholesky_.Factorize(lambda); }
-  /// dx = -(H + lambda I)^-1 b for the last factorization.
+  /// Factorizes H + lambda diag(H) (Marquardt's scaling); false on a numerical failure.
+  bool Factorize(double lambda) { return cholesky_.Factorize(lambda, /*scaled=*/true); }
+  /// dx = -(H + lambda diag(H))^-1 b for the last factorization.
   [[nodiscard]] Eigen::VectorXd Solve() const { return cholesky_.Solve(-b_); }
   [[nodiscard]] double MaxDiagonal() const { return cholesky_.MaxDiagonal(); }
   [[nodiscard]] const Eigen::VectorXd& gradient() const { return b_; }
@@ -244,7 +244,7 @@ LeastSquaresSummary GaussNewtonSolver::Run(PoseGraph& graph, bool levenberg, int
       system_->Linearize(x, kernel);
       linearized = true;
       if (levenberg && lambda == 0.0) {
-        lambda = options_.lm_initial_lambda_factor * std::max(system_->MaxDiagonal(), 1e-12);
+        lambda = options_.lm_initial_lambda;
       }
     }
     ++summary.iterations;

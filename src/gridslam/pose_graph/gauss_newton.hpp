@@ -6,7 +6,7 @@
 // sparse Cholesky (Eigen's SimplicialLDLT). Fixed vertices (and one anchor per component, see
 // graph_utils.hpp) are left out of the system. Gauss-Newton backtracks (halves the step) when a
 // step would raise the cost, and stops if halving does not help, so the cost never increases;
-// Levenberg-Marquardt damps with lambda * I and Nielsen's update. Optional robust kernels
+// Levenberg-Marquardt damps with lambda * diag(H) (Marquardt) and Nielsen's update. Optional robust kernels
 // (Huber, Cauchy) reweight each edge by rho'(e^T Omega e) (iteratively reweighted least squares,
 // as g2o does), for loop closures that may be wrong.
 #pragma once
@@ -30,8 +30,9 @@ struct GaussNewtonOptions {
   std::string robust_kernel = "none";
   /// Kernel width: residuals with sqrt(chi^2) above it are down-weighted [sqrt(chi^2)].
   double robust_width = 1.0;
-  /// Levenberg-Marquardt: initial damping = this times the largest diagonal entry of H.
-  double lm_initial_lambda_factor = 1e-5;
+  /// Levenberg-Marquardt: initial damping lambda of H + lambda diag(H) (small: on the shared
+  /// graphs larger values only slow LM down from the odometry guess).
+  double lm_initial_lambda = 1e-8;
   /// Gauss-Newton: step halvings tried before giving up when the cost would rise.
   int max_step_halvings = 8;
 
@@ -42,8 +43,7 @@ struct GaussNewtonOptions {
       "Stop when a step lowers the cost by less than this fraction");
     v("robust_kernel", robust_kernel, "Robust kernel on edge chi^2: none, huber or cauchy");
     v("robust_width", robust_width, "Robust kernel width [sqrt(chi^2)]");
-    v("lm_initial_lambda_factor", lm_initial_lambda_factor,
-      "LM initial damping relative to max diag(H)");
+    v("lm_initial_lambda", lm_initial_lambda, "LM initial damping of H + lambda diag(H)");
     v("max_step_halvings", max_step_halvings, "Gauss-Newton backtracking steps");
   }
   [[nodiscard]] Status Validate() const {
@@ -55,7 +55,7 @@ struct GaussNewtonOptions {
                 "optimizer.gn.robust_kernel is none, huber or cauchy"));
     GRIDSLAM_RETURN_IF_ERROR(Require(robust_width > 0.0, "optimizer.gn.robust_width > 0"));
     GRIDSLAM_RETURN_IF_ERROR(
-        Require(lm_initial_lambda_factor > 0.0, "optimizer.gn.lm_initial_lambda_factor > 0"));
+        Require(lm_initial_lambda > 0.0, "optimizer.gn.lm_initial_lambda > 0"));
     return Require(max_step_halvings >= 0, "optimizer.gn.max_step_halvings >= 0");
   }
 };

@@ -26,6 +26,9 @@ struct LinearSystem {
   }
 };
 
+// Converts a yaw step to metres when comparing steps (a point 2 m away moves 2 m per radian).
+constexpr double kLeverArm = 2.0;
+
 // Cauchy weight of residual r for scale c (IRLS).
 inline double CauchyWeight(double r, double c) {
   const double u = r / c;
@@ -84,11 +87,14 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
   for (std::size_t stage = 0; stage < options_.robust_scales.size(); ++stage) {
     const double scale = options_.robust_scales[stage];
     result.converged = false;
+    double damping = 1.0;
+    Eigen::Vector3d previous_step = Eigen::Vector3d::Zero();
     for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
       system = LinearSystem{};
       const double c = std::cos(x.z());
       const double s = std::sin(x.z());
-      for (const Eigen::Vector2d& q : scan.points) {
+      for (std::size_t k = 0; k < scan.points.size(); ++k) {
+        const Eigen::Vector2d& q = scan.points[k];
         const double dx = c * q.x() - s * q.y();  // rotated point = d(w)/d(theta) rotated by -90
         const double dy = s * q.x() + c * q.y();
         const double wx = dx + x.x();
@@ -132,6 +138,15 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
             continue;
           }
           ++system.correspondences;
+          if (scan.normal_quality[k] >= min_planarity) {
+            // On a surface, only the gradient's component along the scan's own normal is
+            // information; the tangential part comes from the gaps that sparse or grazing
+            // returns leave in the map's walls and would pin the pose to them.
+            const double nx = c * scan.normals[k].x() - s * scan.normals[k].y();
+            const double ny = s * scan.normals[k].x() + c * scan.normals[k].y();
+            const double along = gradient.x() * nx + gradient.y() * ny;
+            gradient = Eigen::Vector2d(along * nx, along * ny);
+          }
           const Eigen::Vector3d J(gradient.x(), gradient.y(),
                                   -gradient.x() * dy + gradient.y() * dx);
           system.Add(J, d, inv_var * CauchyWeight(d, scale));
@@ -161,6 +176,14 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
         delta.head<2>() *= 0.25 / step_xy;
       }
       delta.z() = std::clamp(delta.z(), -0.2, 0.2);
+      // The distance field is only piecewise smooth: when a step turns back on the previous one,
+      // the iterate oscillates around a kink, so the steps are damped from then on.
+      const Eigen::Vector3d scaled(delta.x(), delta.y(), delta.z() * kLeverArm);
+      if (scaled.dot(previous_step) < -0.5 * scaled.norm() * previous_step.norm()) {
+        damping *= 0.5;
+      }
+      previous_step = scaled;
+      delta *= damping;
       x += delta;
       x.z() = NormalizeAngle(x.z());
       if (delta.head<2>().norm() < options_.convergence_translation &&

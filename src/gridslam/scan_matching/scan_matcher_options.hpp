@@ -19,7 +19,9 @@ struct ScanMatcherOptions {
   std::vector<double> robust_scales = {0.15, 0.05};
   int max_iterations = 10;             ///< Gauss-Newton iterations per stage.
   double point_sigma = 0.03;           ///< Standard deviation of one point's residual [m].
-  double min_planarity = 0.5;          ///< Below, a map cell's normal is not trusted.
+  /// Normals less consistent than this (0..1) are not used: a map cell's for point_to_line, a
+  /// scan point's (which restricts the distance gradient to it) for distance_field.
+  double min_planarity = 0.5;
   double convergence_translation = 1e-4;  ///< Stop when a step is smaller [m] ...
   double convergence_rotation = 1e-4;     ///< ... and [rad].
   int min_points = 20;          ///< Fewer returns: the frame falls back to odometry.
@@ -43,7 +45,8 @@ struct ScanMatcherOptions {
     v("max_iterations", max_iterations, "Gauss-Newton iterations per stage");
     v("point_sigma", point_sigma, "Standard deviation of one point's residual [m]");
     v("min_planarity", min_planarity,
-      "Map cells with a less consistent normal use a point-to-point residual (0..1)");
+      "Normals less consistent than this (0..1) are not used (map cells' for point_to_line, "
+      "scan points' for distance_field)");
     v("convergence_translation", convergence_translation, "Convergence threshold [m]");
     v("convergence_rotation", convergence_rotation, "Convergence threshold [rad]");
     v("min_points", min_points, "Scans with fewer returns fall back to odometry");

@@ -137,25 +137,3 @@ TEST(ScanMatcher, PriorHoldsAnUnconstrainedDirection) {
 
 }  // namespace
 }  // namespace gridslam::scan_matching
-namespace gridslam::scan_matching {
-namespace {
-TEST(ScanMatcher, DebugOffset) {
-  const Pose2 T_base_laser(atof(getenv("OFF")), 0.0, 0.0);
-  LocalMapOptions options;
-  options.size = 20.0;
-  RollingWindow window(options, Eigen::Vector2d(6.0, 3.5), true);
-  for (const Pose2& pose : MapPoses()) {
-    const LaserScan scan = SimulateScan(TestWorld(), pose * T_base_laser);
-    window.InsertScan(pose, ExtractScanPoints(scan, T_base_laser, 30.0));
-  }
-  MatchingField field(0.3);
-  field.Update(window);
-  const ScanMatcher matcher(MatcherOptions(getenv("RES")));
-  for (const Pose2& truth : {Pose2(3.0, 1.5, 0.2), Pose2(7.0, 3.0, 2.0), Pose2(12.0, 3.6, -0.1)}) {
-    const ScanPoints scan = ExtractScanPoints(SimulateScan(TestWorld(), truth * T_base_laser, 181), T_base_laser, 30.0);
-    const MatchResult result = matcher.Match(window, field, scan, truth * Pose2(0.05, 0.02, 0.03), Eigen::Matrix3d::Zero());
-    printf("truth %.3f %.3f %.4f got %.3f %.3f %.4f\n", truth.x(), truth.y(), truth.theta(), result.T_odom_base.x(), result.T_odom_base.y(), result.T_odom_base.theta());
-  }
-}
-}  // namespace
-}  // namespace gridslam::scan_matching

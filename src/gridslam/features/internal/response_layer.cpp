@@ -1,6 +1,7 @@
 #include "gridslam/features/internal/response_layer.hpp"
 
 #include <cstdint>
+#include <vector>
 
 #include "gridslam/common/check.hpp"
 
@@ -114,14 +115,23 @@ void ResponseLayer::Prepare(int filter_size, int width, int height, int step) {
 
 void ResponseLayer::Compute(const IntegralImage& integral, int filter_size, int step) {
   Prepare(filter_size, integral.width(), integral.height(), step);
-  const float norm = Normaliser(filter_);
+  const float norm2 = Normaliser(filter_) * Normaliser(filter_);
+  // Steps up to 4: the vectorised unit-step loop over every pixel of the row, then every step-th
+  // value, is cheaper than the scalar strided loop.
+  constexpr int kMaxDenseStep = 4;
+  std::vector<float> dense(step > 1 && step <= kMaxDenseStep ? integral.width() : 0);
   for (int m = m0_; m <= m1_; ++m) {
     const RowPointers rows = Rows(integral, m * step, filter_);
     float* out = det_.get() + static_cast<std::ptrdiff_t>(m) * nx_;
     if (step == 1) {
-      ComputeUnitStepRow(rows, filter_, k0_, k1_, norm * norm, out);
+      ComputeUnitStepRow(rows, filter_, k0_, k1_, norm2, out);
+    } else if (step <= kMaxDenseStep) {
+      ComputeUnitStepRow(rows, filter_, k0_ * step, k1_ * step, norm2, dense.data());
+      for (int k = k0_; k <= k1_; ++k) {
+        out[k] = dense[static_cast<std::size_t>(k) * static_cast<std::size_t>(step)];
+      }
     } else {
-      ComputeRow<false>(rows, filter_, k0_, k1_, step, norm * norm, out);
+      ComputeRow<false>(rows, filter_, k0_, k1_, step, norm2, out);
     }
   }
 }

@@ -127,7 +127,7 @@ void BlockCholesky::SetZero() {
   std::fill(values_.begin(), values_.end(), Eigen::Matrix3d::Zero());
 }
 
-bool BlockCholesky::Factorize(double lambda) {
+bool BlockCholesky::Factorize(double lambda, bool scaled) {
   // Up-looking Cholesky (Davis §4.7) on 3x3 blocks: row k of L from a sparse triangular solve.
   for (int k = 0; k < n_; ++k) {
     const int end = a_col_[U(k) + 1] - 1;
@@ -135,7 +135,11 @@ bool BlockCholesky::Factorize(double lambda) {
       x_[U(a_row_[U(p)])] = values_[U(p)];
     }
     Eigen::Matrix3d d = values_[U(end)];
-    d.diagonal().array() += lambda;
+    if (scaled) {
+      d.diagonal() *= 1.0 + lambda;
+    } else {
+      d.diagonal().array() += lambda;
+    }
     for (int q = pattern_ptr_[U(k)]; q < pattern_ptr_[U(k) + 1]; ++q) {
       const int i = pattern_[U(q)];
       // Y = L_ii^-1 X_i, then X_r -= L_ri Y for the rows r < k already in column i.

@@ -33,9 +33,10 @@ class BlockCholesky {
   [[nodiscard]] std::vector<Eigen::Matrix3d>& values() { return values_; }
   void SetZero();
 
-  /// Factorizes A + lambda I. False if it is not numerically positive definite.
-  bool Factorize(double lambda = 0.0);
-  /// Solves (A + lambda I) x = b with the last factorization.
+  /// Factorizes A + lambda D, D = I or, with `scaled`, D = diag(A) (Marquardt). False if it is
+  /// not numerically positive definite.
+  bool Factorize(double lambda = 0.0, bool scaled = false);
+  /// Solves (A + lambda D) x = b with the last factorization.
   [[nodiscard]] Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
   /// x^T A x (without lambda).
   [[nodiscard]] double Quadratic(const Eigen::VectorXd& x) const;
