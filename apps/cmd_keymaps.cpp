@@ -11,11 +11,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "command.hpp"
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -61,8 +62,8 @@ Status WriteKeyMap(const std::filesystem::path& dir, const keymap::KeyMap& key,
   const std::string grid_path = (dir / (std::string(name) + ".png")).string();
   const std::string distance_path = (dir / (std::string(name) + "_distance.png")).string();
   if (!cv::imwrite(grid_path, OccupancyToImage(occupancy)) ||
-      !cv::imwrite(distance_path, DistanceImage(keymap::ObstacleMask(key.log_odds, occupied),
-                                                clamp))) {
+      !cv::imwrite(distance_path,
+                   DistanceImage(keymap::ObstacleMask(key.log_odds, occupied), clamp))) {
     return RuntimeError("cannot write " + grid_path);
   }
   index << key.id << " " << FormatSeconds(key.time) << " " << key.T_odom_key.x() << " "

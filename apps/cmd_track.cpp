@@ -3,8 +3,6 @@
 // trajectory.tum (one pose per scan, printed timestamps, in the front end's odometry frame),
 // report.json (scans, key maps, fallbacks, time per stage, real-time factor) and config.yaml.
 // A progress bar goes to stderr when it is a terminal.
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,11 +11,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "command.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/io/trajectory_io.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
+
+#include "command.hpp"
+#include <unistd.h>
 
 namespace gridslam::app {
 namespace {
@@ -43,17 +43,18 @@ void DrawProgress(std::size_t done, std::size_t total) {
 }
 
 nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
-  return {{"frames", s.frames},
-          {"matched", s.matched},
-          {"fallbacks",
-           {{"few_points", s.fallback_few_points},
-            {"empty_map", s.fallback_empty_map},
-            {"rejected", s.fallback_rejected},
-            {"total", s.fallback_few_points + s.fallback_empty_map + s.fallback_rejected}}},
-          {"correlative_searches", s.searches},
-          {"insertions", s.insertions},
-          {"key_maps", s.key_maps},
-          {"distance_field", {{"rebuilds", s.field_rebuilds}, {"tile_updates", s.field_tile_updates}}}};
+  return {
+      {"frames", s.frames},
+      {"matched", s.matched},
+      {"fallbacks",
+       {{"few_points", s.fallback_few_points},
+        {"empty_map", s.fallback_empty_map},
+        {"rejected", s.fallback_rejected},
+        {"total", s.fallback_few_points + s.fallback_empty_map + s.fallback_rejected}}},
+      {"correlative_searches", s.searches},
+      {"insertions", s.insertions},
+      {"key_maps", s.key_maps},
+      {"distance_field", {{"rebuilds", s.field_rebuilds}, {"tile_updates", s.field_tile_updates}}}};
 }
 
 int RunTrack(const TrackArgs& args, AppContext& context) {

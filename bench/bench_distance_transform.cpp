@@ -32,8 +32,8 @@ void BM_FelzenszwalbHuttenlocher(benchmark::State& state) {
   const cv::Mat sources = (image == 0);
   SquaredDistanceField field;
   for (auto _ : state) {
-    gridslam::distance_transform::SquaredEuclideanDistanceTransform(
-        sources.ptr<std::uint8_t>(), side, side, field, labels);
+    gridslam::distance_transform::SquaredEuclideanDistanceTransform(sources.ptr<std::uint8_t>(),
+                                                                    side, side, field, labels);
     benchmark::DoNotOptimize(field.squared.data());
   }
   state.SetItemsProcessed(state.iterations() * side * side);
@@ -51,8 +51,8 @@ void BM_FelzenszwalbHuttenlocherTruncated(benchmark::State& state) {
   const cv::Mat sources = (WallImage(side) == 0);
   SquaredDistanceField field;
   for (auto _ : state) {
-    gridslam::distance_transform::SquaredEuclideanDistanceTransform(
-        sources.ptr<std::uint8_t>(), side, side, field, true, 10.0F);
+    gridslam::distance_transform::SquaredEuclideanDistanceTransform(sources.ptr<std::uint8_t>(),
+                                                                    side, side, field, true, 10.0F);
     benchmark::DoNotOptimize(field.squared.data());
   }
   state.SetItemsProcessed(state.iterations() * side * side);

@@ -107,7 +107,10 @@ void BM_InsertAndUpdateField(benchmark::State& state) {
     ++k;
   }
 }
-BENCHMARK(BM_InsertAndUpdateField)->ArgNames({"beams"})->Arg(180)->Arg(360)->Unit(
-    benchmark::kMicrosecond);
+BENCHMARK(BM_InsertAndUpdateField)
+    ->ArgNames({"beams"})
+    ->Arg(180)
+    ->Arg(360)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -41,8 +41,7 @@ TEST(FrontEndIntegration, BeatsOdometryOnIntelsLocalRelations) {
   eval::EvalOptions local;
   local.max_dt = 10.0;
   const eval::RelationMetrics ours = eval::EvaluateRelations(relations.value(), estimate, local);
-  const eval::RelationMetrics theirs =
-      eval::EvaluateRelations(relations.value(), odometry, local);
+  const eval::RelationMetrics theirs = eval::EvaluateRelations(relations.value(), odometry, local);
   ASSERT_GT(ours.used, 800);
   ASSERT_EQ(ours.used, theirs.used);
   EXPECT_LT(ours.translation.mean, theirs.translation.mean);

@@ -74,7 +74,7 @@ PairOutcome AlignPair(const TestPair& pair, bool positive, const Described& a, c
       outcome.refined = true;
     }
   }
-  if (positive) {
+  {
     const Pose2 error = Between(pair.T_a_b_true, outcome.T_a_b);
     const Pose2 error_aligned = Between(pair.T_a_b_true, outcome.T_a_b_aligned);
     outcome.error_translation = error.translation().norm();
@@ -85,6 +85,11 @@ PairOutcome AlignPair(const TestPair& pair, bool positive, const Described& a, c
     outcome.correct = outcome.accepted &&
                       outcome.error_translation < config.eval.correct_translation &&
                       outcome.error_rotation < max_rotation;
+    // Negatives: an accepted alignment is false unless it lands near the (approximate) truth, as
+    // it may for two far-apart key maps whose windows still share a corner.
+    outcome.gross = outcome.accepted &&
+                    (outcome.error_translation > config.eval.gross_translation ||
+                     outcome.error_rotation > DegToRad(config.eval.gross_rotation_deg));
   }
   return outcome;
 }
@@ -109,6 +114,7 @@ AlignEvalSummary Summarize(std::span<const PairOutcome> positives,
   for (const PairOutcome& o : positives) {
     ++s.pairs;
     s.accepted += o.accepted ? 1 : 0;
+    s.gross_wrong += o.gross ? 1 : 0;
     if (o.correct) {
       ++s.correct;
       errors_m.push_back(o.error_translation);
@@ -122,7 +128,8 @@ AlignEvalSummary Summarize(std::span<const PairOutcome> positives,
   }
   for (const PairOutcome& o : negatives) {
     ++s.negatives;
-    s.false_accepts += o.accepted ? 1 : 0;
+    s.negatives_accepted += o.accepted ? 1 : 0;
+    s.false_accepts += o.gross ? 1 : 0;
   }
   for (const auto* set : {&positives, &negatives}) {
     for (const PairOutcome& o : *set) {

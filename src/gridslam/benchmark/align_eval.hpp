@@ -6,7 +6,7 @@
 // descriptions (matching, RANSAC, verification), accepted alignments are refined on the distance
 // field (loop_closure/grid_refinement.hpp) when enabled, as the mapper does, and the result is
 // compared with the truth: correct when the error is below correct_translation and
-// correct_rotation_deg. Reported: pairs tried, accepted, correct, accepted-but-wrong, precision
+// correct_rotation_deg, grossly wrong beyond gross_translation or gross_rotation_deg. Reported: pairs tried, accepted, correct, accepted-but-wrong, precision
 // (correct / accepted), recall (correct / pairs), median error of the correct ones, false accepts
 // among the negatives, features per key map, and the time per key map (description) and per pair
 // (alignment with features precomputed).
@@ -61,13 +61,16 @@ struct PairOutcome {
   int inliers = 0;
   double agreement = 0.0;
   double contradiction = 0.0;
-  /// Positives: errors of T_a_b and of T_a_b_aligned [m], [rad]; correct: accepted and T_a_b
-  /// within the limits.
+  /// Errors of T_a_b and of T_a_b_aligned [m], [rad] (negatives: against an approximate truth);
+  /// correct: accepted and T_a_b within the limits.
   double error_translation = 0.0;
   double error_rotation = 0.0;
   double error_translation_aligned = 0.0;
   double error_rotation_aligned = 0.0;
   bool correct = false;
+  /// Accepted with an error beyond gross_translation or gross_rotation_deg (for negatives: a
+  /// false accept).
+  bool gross = false;
   double seconds_align = 0.0;   ///< Matching + RANSAC + verification.
   double seconds_refine = 0.0;
 };
@@ -77,6 +80,7 @@ struct AlignEvalSummary {
   long accepted = 0;
   long correct = 0;
   long wrong = 0;              ///< Accepted but wrong.
+  long gross_wrong = 0;        ///< Accepted and grossly wrong (part of `wrong`).
   long correct_aligned = 0;    ///< Accepted with the aligner's transform already within limits.
   double precision = 0.0;      ///< correct / accepted (NaN if nothing accepted).
   double recall = 0.0;         ///< correct / pairs (NaN if no pairs).
@@ -85,7 +89,8 @@ struct AlignEvalSummary {
   double median_error_aligned_m = 0.0;   ///< The aligner's error over the correct pairs.
   double median_error_aligned_deg = 0.0;
   long negatives = 0;
-  long false_accepts = 0;
+  long negatives_accepted = 0;  ///< Accepted negatives, false or (rarely) near the truth.
+  long false_accepts = 0;       ///< Accepted negatives far from the truth.
   double features_per_keymap = 0.0;   ///< Mean over the described key maps.
   double features_median = 0.0;
   long described = 0;                 ///< Key maps described.

@@ -26,14 +26,20 @@ struct AlignEvalOptions {
   /// truth_check_history before a pair's scan and the end of its key map are compared with the
   /// front end; a pair is tested only if its largest error stays within truth_max_error and
   /// truth_max_error_deg (e.g. a front end sliding along a featureless corridor moves the robot
-  /// against its map, which makes the truth of T_a_b meaningless) [s], [s], [m], [deg].
+  /// against its map, which makes the truth of T_a_b meaningless). The defaults equal the
+  /// correctness limits: where the front end is off by that much, the truth cannot tell a correct
+  /// alignment from a wrong one [s], [s], [m], [deg].
   double truth_check_max_dt = 10.0;
   double truth_check_history = 30.0;
-  double truth_max_error = 0.05;
-  double truth_max_error_deg = 0.5;
+  double truth_max_error = 0.1;
+  double truth_max_error_deg = 1.0;
   /// An accepted alignment is correct when its error is below both limits [m], [deg].
   double correct_translation = 0.1;
   double correct_rotation_deg = 1.0;
+  /// An accepted alignment is grossly wrong when its error exceeds either limit: an error far
+  /// beyond the truth's own uncertainty, which would damage a pose graph [m], [deg].
+  double gross_translation = 0.5;
+  double gross_rotation_deg = 5.0;
   /// Negative pairs drawn at random (0 = none) among key maps whose true centres are farther
   /// apart than negative_min_distance [-], [m].
   int negatives = 0;
@@ -63,6 +69,8 @@ struct AlignEvalOptions {
       "Truth check: largest front-end rotation error allowed near a pair [deg]");
     v("correct_translation", correct_translation, "Correct: translation error below this [m]");
     v("correct_rotation_deg", correct_rotation_deg, "Correct: rotation error below this [deg]");
+    v("gross_translation", gross_translation, "Grossly wrong: translation error above this [m]");
+    v("gross_rotation_deg", gross_rotation_deg, "Grossly wrong: rotation error above this [deg]");
     v("negatives", negatives, "Random negative pairs (true centres far apart); 0 = none");
     v("negative_min_distance", negative_min_distance,
       "Negative pairs: true key-map centres farther apart than this [m]");
@@ -86,6 +94,10 @@ struct AlignEvalOptions {
         Require(correct_translation > 0.0, "align_eval.correct_translation > 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(correct_rotation_deg > 0.0, "align_eval.correct_rotation_deg > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(gross_translation >= correct_translation,
+                                     "align_eval.gross_translation >= correct_translation"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(gross_rotation_deg >= correct_rotation_deg,
+                                     "align_eval.gross_rotation_deg >= correct_rotation_deg"));
     GRIDSLAM_RETURN_IF_ERROR(Require(negatives >= 0, "align_eval.negatives >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(negative_min_distance > 0.0, "align_eval.negative_min_distance > 0"));

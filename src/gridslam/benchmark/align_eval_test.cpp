@@ -153,8 +153,9 @@ TEST(AlignEval, SummaryCountsAndMedians) {
   positives[1].error_translation = 0.04;
   positives[2].accepted = true;  // wrong
   positives[3].reason = matching::RejectReason::kTooFewInliers;
-  std::vector<PairOutcome> negatives(2);
-  negatives[1].accepted = true;
+  std::vector<PairOutcome> negatives(3);
+  negatives[1].accepted = negatives[1].gross = true;
+  negatives[2].accepted = true;  // near the truth: not a false accept
   const AlignEvalSummary s = Summarize(positives, negatives);
   EXPECT_EQ(s.pairs, 4);
   EXPECT_EQ(s.accepted, 3);
@@ -163,7 +164,8 @@ TEST(AlignEval, SummaryCountsAndMedians) {
   EXPECT_DOUBLE_EQ(s.precision, 2.0 / 3.0);
   EXPECT_DOUBLE_EQ(s.recall, 0.5);
   EXPECT_DOUBLE_EQ(s.median_error_m, 0.03);
-  EXPECT_EQ(s.negatives, 2);
+  EXPECT_EQ(s.negatives, 3);
+  EXPECT_EQ(s.negatives_accepted, 2);
   EXPECT_EQ(s.false_accepts, 1);
   EXPECT_EQ(s.rejected.at(matching::ToString(matching::RejectReason::kTooFewInliers)), 1);
   EXPECT_TRUE(std::isnan(Summarize({}, {}).precision));

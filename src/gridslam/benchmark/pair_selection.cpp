@@ -32,17 +32,17 @@ std::optional<Pose2> LookUp(std::span<const eval::StampedPose> truth, Time time,
   return best;
 }
 
-/// True centre of each key map in the world frame: T_world_key = T_world_base(t) *
-/// T_key_base(t)^-1 for the scan nearest the middle of its scans that has ground truth.
-std::vector<std::optional<Eigen::Vector2d>> TrueCentres(
+/// True frame of each key map in the world: T_world_key = T_world_base(t) * T_key_base(t)^-1
+/// for the scan nearest the middle of its scans that has ground truth.
+std::vector<std::optional<Pose2>> TrueKeyMapPoses(
     const KeyMapCatalog& catalog, std::span<const eval::StampedPose> ground_truth,
     double tolerance) {
   std::vector<eval::StampedPose> truth(ground_truth.begin(), ground_truth.end());
   std::stable_sort(truth.begin(), truth.end(),
                    [](const auto& a, const auto& b) { return a.time < b.time; });
-  std::vector<std::optional<Eigen::Vector2d>> centres;
+  std::vector<std::optional<Pose2>> centres;
   for (const KeyMapRecord& key_map : catalog.KeyMaps()) {
-    std::optional<Eigen::Vector2d> centre;
+    std::optional<Pose2> centre;
     const int middle = (key_map.first_frame + key_map.last_frame) / 2;
     const int span = key_map.last_frame - key_map.first_frame;
     for (int step = 0; step <= span && !centre; ++step) {
@@ -54,8 +54,7 @@ std::vector<std::optional<Eigen::Vector2d>> TrueCentres(
       const auto T_world_base =
           LookUp(truth, catalog.Frames()[static_cast<std::size_t>(f)].time, tolerance);
       if (T_world_base) {
-        const Pose2 T_world_key = *T_world_base * catalog.PoseInKeyMap(f, false).Inverse();
-        centre = T_world_key.translation();
+        centre = *T_world_base * catalog.PoseInKeyMap(f, false).Inverse();
       }
     }
     centres.push_back(centre);
@@ -111,6 +110,25 @@ void CheckTruth(std::span<const FrontEndCheck> checks, Time from, Time to, TestP
   }
 }
 
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// Component-wise median of nearby poses (angles unwrapped around the first one's).
+Pose2 MedianPose(const std::vector<Pose2>& poses) {
+  std::vector<double> x;
+  std::vector<double> y;
+  std::vector<double> theta;
+  for (const Pose2& pose : poses) {
+    x.push_back(pose.x());
+    y.push_back(pose.y());
+    theta.push_back(poses.front().theta() + NormalizeAngle(pose.theta() - poses.front().theta()));
+  }
+  return {Median(x), Median(y), NormalizeAngle(Median(theta))};
+}
+
 }  // namespace
 
 PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
@@ -118,6 +136,7 @@ PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
                                   const AlignEvalOptions& options, bool relations_in_laser_frame) {
   PositiveSelection selection;
   std::map<std::pair<int, int>, std::size_t> seen;  // key-map pair -> index in pairs
+  std::vector<std::vector<Pose2>> truths;           // per pair, from each of its relations
   const std::vector<FrontEndCheck> checks =
       FrontEndChecks(catalog, relations, options, relations_in_laser_frame);
   const Duration history = SecondsToDuration(options.truth_check_history);
@@ -167,20 +186,31 @@ PositiveSelection SelectPositives(const KeyMapCatalog& catalog,
     const auto [it, inserted] =
         seen.emplace(std::make_pair(pair.key_a, pair.key_b), selection.pairs.size());
     if (!inserted) {
-      // Another relation between the same key maps: how far its truth is from the first one's.
       ++selection.duplicates;
       TestPair& first = selection.pairs[it->second];
-      const Pose2 difference = Between(first.T_a_b_true, pair.T_a_b_true);
-      ++first.relations;
-      first.truth_spread_translation =
-          std::max(first.truth_spread_translation, difference.translation().norm());
-      first.truth_spread_rotation =
-          std::max(first.truth_spread_rotation, std::abs(NormalizeAngle(difference.theta())));
+      truths[it->second].push_back(pair.T_a_b_true);
+      first.truth_checks += pair.truth_checks;
+      first.truth_error_translation =
+          std::max(first.truth_error_translation, pair.truth_error_translation);
+      first.truth_error_rotation = std::max(first.truth_error_rotation, pair.truth_error_rotation);
       continue;
     }
-    pair.relations = 1;
-    selection.unchecked += pair.truth_checks == 0 ? 1 : 0;
+    truths.push_back({pair.T_a_b_true});
     selection.pairs.push_back(pair);
+  }
+  for (std::size_t k = 0; k < selection.pairs.size(); ++k) {
+    TestPair& pair = selection.pairs[k];
+    pair.relations = static_cast<int>(truths[k].size());
+    pair.T_a_b_true = MedianPose(truths[k]);
+    pair.centre_distance = pair.T_a_b_true.translation().norm();
+    for (const Pose2& truth : truths[k]) {
+      const Pose2 difference = Between(pair.T_a_b_true, truth);
+      pair.truth_spread_translation =
+          std::max(pair.truth_spread_translation, difference.translation().norm());
+      pair.truth_spread_rotation =
+          std::max(pair.truth_spread_rotation, std::abs(NormalizeAngle(difference.theta())));
+    }
+    selection.unchecked += pair.truth_checks == 0 ? 1 : 0;
   }
   return selection;
 }
@@ -195,14 +225,14 @@ NegativeSelection SelectNegatives(const KeyMapCatalog& catalog,
   const std::vector<KeyMapRecord>& key_maps = catalog.KeyMaps();
   const int n = static_cast<int>(key_maps.size());
   selection.from_ground_truth = !ground_truth.empty();
-  std::vector<std::optional<Eigen::Vector2d>> centres;
+  std::vector<std::optional<Pose2>> centres;
   if (selection.from_ground_truth) {
-    centres = TrueCentres(catalog, ground_truth, options.time_tolerance);
+    centres = TrueKeyMapPoses(catalog, ground_truth, options.time_tolerance);
     selection.key_maps_with_truth = static_cast<int>(
         std::count_if(centres.begin(), centres.end(), [](const auto& c) { return c.has_value(); }));
   } else {
     for (const KeyMapRecord& key_map : key_maps) {
-      centres.emplace_back(key_map.T_odom_key.translation());
+      centres.emplace_back(key_map.T_odom_key);
     }
   }
   // Reservoir sampling (Algorithm R) over the candidates in a fixed order: uniform, deterministic
@@ -217,8 +247,9 @@ NegativeSelection SelectNegatives(const KeyMapCatalog& catalog,
       if (!centres[static_cast<std::size_t>(b)]) {
         continue;
       }
-      const double distance =
-          (*centres[static_cast<std::size_t>(a)] - *centres[static_cast<std::size_t>(b)]).norm();
+      const Pose2& T_x_a = *centres[static_cast<std::size_t>(a)];
+      const Pose2& T_x_b = *centres[static_cast<std::size_t>(b)];
+      const double distance = (T_x_a.translation() - T_x_b.translation()).norm();
       double limit = options.negative_min_distance;
       if (!selection.from_ground_truth) {
         limit += options.negative_drift * std::abs(key_maps[static_cast<std::size_t>(b)].travel -
@@ -231,6 +262,7 @@ NegativeSelection SelectNegatives(const KeyMapCatalog& catalog,
       pair.key_a = a;
       pair.key_b = b;
       pair.centre_distance = distance;
+      pair.T_a_b_true = Between(T_x_a, T_x_b);
       const auto seen = static_cast<std::uint64_t>(selection.candidates++);
       if (selection.pairs.size() < wanted) {
         selection.pairs.push_back(pair);

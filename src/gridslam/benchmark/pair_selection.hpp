@@ -10,7 +10,9 @@
 // include_shared, when the local map forgot a's cells before b was taken (so both key maps are
 // built from different data). The truth rests on the front end being locally accurate, which is
 // checked against the short relations around both scans (truth_check_*): pairs where it is not
-// are left out. Each key-map pair is tested once (the first relation defines it).
+// are left out. Each key-map pair is tested once; when several relations give it, its truth is
+// their component-wise median (the relations' own noise, a few centimetres and tenths of a degree
+// on the real logs, is then partly averaged out, and its spread is reported).
 //
 // Negative pairs have no correct answer: key maps whose true centres are farther apart than
 // negative_min_distance (with 15 m windows and a 20 m default their windows cannot overlap), drawn
@@ -32,7 +34,8 @@ namespace gridslam::benchmark {
 struct TestPair {
   int key_a = 0;  ///< Key map aligned to (the one around t1).
   int key_b = 0;  ///< Key map aligned (the one around t2).
-  /// Positive pairs: the true T_a_b and the relation's timestamps.
+  /// The true T_a_b (negatives: from ground truth, or the front end's estimate, which drifts)
+  /// and, for positives, the (first) relation's timestamps.
   Pose2 T_a_b_true;
   Time t1;
   Time t2;
@@ -40,7 +43,7 @@ struct TestPair {
   /// ground truth) [m].
   double centre_distance = 0.0;
   /// Positive pairs: relations giving this key-map pair, and the largest difference between the
-  /// truth they give and T_a_b_true (the truth's own uncertainty) [m], [rad].
+  /// truth one of them gives and T_a_b_true (the truth's own uncertainty) [m], [rad].
   int relations = 0;
   double truth_spread_translation = 0.0;
   double truth_spread_rotation = 0.0;

@@ -25,7 +25,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct SquaredDistanceField {
   int width = 0;
   int height = 0;
-  std::vector<float> squared;   ///< Squared distance to the nearest source [cells^2]; +inf if none.
+  std::vector<float> squared;  ///< Squared distance to the nearest source [cells^2]; +inf if none.
   std::vector<int32_t> nearest;  ///< Linear index of the nearest source; -1 if none (optional).
 };
 

@@ -54,7 +54,8 @@ TEST(SquaredDistance1D, MatchesBruteForceOnSampledFunctions) {
     for (int q = 0; q < n; ++q) {
       float best = kInfinity;
       for (int p = 0; p < n; ++p) {
-        best = std::min(best, static_cast<float>((q - p) * (q - p)) + f[static_cast<std::size_t>(p)]);
+        best =
+            std::min(best, static_cast<float>((q - p) * (q - p)) + f[static_cast<std::size_t>(p)]);
       }
       const auto uq = static_cast<std::size_t>(q);
       ASSERT_EQ(d[uq], best) << "trial " << trial << " q " << q;

@@ -5,8 +5,12 @@
 // the filter area L² (intensities scaled to [0, 1]) and the blob response is
 // det(H_approx) = Dxx·Dyy − (0.9·Dxy)² (Eq. (4)). The scale space is the paper's (§3.3): octave o
 // holds L = 3·(2^(o+1)·(i+1) + 1), sampled every initial_step·2^o pixels; keypoints are the
-// 3×3×3 maxima above the threshold in the inner layers, refined by fitting a 3-D quadratic in
-// (x, y, L) (Brown & Lowe 2002) and rejected when the offset exceeds half a sample.
+// 3×3×3 maxima above the threshold in the inner layers (ties go to the first in scan order),
+// refined by fitting a 3-D quadratic in (x, y, L) (Brown & Lowe 2002): while the offset exceeds
+// half a sample the fit moves to the neighbouring sample (at most options.interpolation_steps
+// fits; two samples pointing at each other keep the fit clamped to ±0.5), else the candidate is
+// rejected. Layers that recur in the next octave are subsampled, not recomputed. The paper's 0.9
+// weight matches this normalisation (equal L² for every lobe); it is not OpenCV's per-lobe one.
 //
 // Keypoint conventions (cv::KeyPoint): pt in pixels with pixel centres at integer coordinates;
 // size = the interpolated filter size L [px], so the scale is s = 1.2·L/9 (ScaleOfSize); response

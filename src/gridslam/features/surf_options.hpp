@@ -36,7 +36,7 @@ struct SurfOptions {
   template <class V>
   void Visit(V& v) {
     v("hessian_threshold", hessian_threshold,
-      "Minimum det of the area-normalised box-filter Hessian, intensities in [0, 1] [1]");
+      "Minimum det of the area-normalised box-filter Hessian, intensities in [0, 1] [-]");
     v("num_octaves", num_octaves, "Octaves of the scale space (paper: 4)");
     v("layers_per_octave", layers_per_octave, "Box filters per octave, >= 3 (paper: 4)");
     v("initial_step", initial_step, "Sampling step of the first octave, doubling per octave [px]");

@@ -13,9 +13,8 @@ Status LocalMapOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(resolution > 0.0, "local_map.resolution > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(size >= 10 * resolution, "local_map.size >= 10 cells"));
   GRIDSLAM_RETURN_IF_ERROR(Require(size / resolution <= 8000, "local_map.size <= 8000 cells"));
-  GRIDSLAM_RETURN_IF_ERROR(
-      Require(shift_distance > 0.0 && shift_distance < 0.5 * size,
-              "0 < local_map.shift_distance < size / 2"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(shift_distance > 0.0 && shift_distance < 0.5 * size,
+                                   "0 < local_map.shift_distance < size / 2"));
   for (const double p : {hit_probability, miss_probability, min_probability, max_probability,
                          occupied_probability}) {
     GRIDSLAM_RETURN_IF_ERROR(Require(p > 0.0 && p < 1.0, "local_map probabilities in (0, 1)"));

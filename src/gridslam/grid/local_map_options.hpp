@@ -7,20 +7,20 @@
 namespace gridslam {
 
 struct LocalMapOptions {
-  double resolution = 0.05;          ///< Cell side [m].
+  double resolution = 0.05;  ///< Cell side [m].
   /// Window side [m]; the cell count is made odd. Key maps are its central keymap.size metres
   /// (15 m); a larger window keeps the map the scan matcher sees longer and includes the far
   /// returns that hold the heading: drift on intel falls from 0.29 m (15 m) to 0.13 m (25 m) on
   /// all benchmark relations (docs/front_end.md).
   double size = 25.0;
-  double shift_distance = 1.0;       ///< Recentre when the robot is this far from the centre [m].
-  double hit_probability = 0.7;      ///< Inverse sensor model at a beam's end cell.
-  double miss_probability = 0.45;    ///< Inverse sensor model along the beam.
-  double min_probability = 0.12;     ///< Clamp (keeps the map able to change back).
-  double max_probability = 0.97;     ///< Clamp.
+  double shift_distance = 1.0;        ///< Recentre when the robot is this far from the centre [m].
+  double hit_probability = 0.7;       ///< Inverse sensor model at a beam's end cell.
+  double miss_probability = 0.45;     ///< Inverse sensor model along the beam.
+  double min_probability = 0.12;      ///< Clamp (keeps the map able to change back).
+  double max_probability = 0.97;      ///< Clamp.
   double occupied_probability = 0.6;  ///< Cells above are obstacles (matching, distance transform).
-  double max_range = 30.0;           ///< Returns beyond this are not inserted [m].
-  bool clear_no_returns = false;     ///< Whether max-range/no-return beams clear free space.
+  double max_range = 30.0;            ///< Returns beyond this are not inserted [m].
+  bool clear_no_returns = false;      ///< Whether max-range/no-return beams clear free space.
   double no_return_clearing_range = 5.0;  ///< How far such beams clear, if enabled [m].
   int surface_memory = 20;  ///< Hits averaged into a cell's mean point and normal (moving window).
 

@@ -5,14 +5,13 @@
 namespace gridslam {
 
 std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> ClipSegment(const MapLimits& limits,
-                                                                        const Eigen::Vector2d& a,
-                                                                        const Eigen::Vector2d& b) {
+                                                                       const Eigen::Vector2d& a,
+                                                                       const Eigen::Vector2d& b) {
   // Liang-Barsky: keep the parameter interval [t0, t1] of a + t (b - a) inside every slab.
   const double margin = 1e-6 * limits.Resolution();
   const Eigen::Vector2d lo = limits.Origin() + Eigen::Vector2d::Constant(margin);
   const Eigen::Vector2d hi =
-      limits.Origin() +
-      Eigen::Vector2d(limits.Width(), limits.Height()) * limits.Resolution() -
+      limits.Origin() + Eigen::Vector2d(limits.Width(), limits.Height()) * limits.Resolution() -
       Eigen::Vector2d::Constant(margin);
   if (limits.Width() == 0 || limits.Height() == 0) {
     return std::nullopt;

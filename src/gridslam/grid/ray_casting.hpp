@@ -18,8 +18,8 @@ namespace gridslam {
 /// The part of the segment a -> b (metres) inside the rectangle of `limits`, shrunk by a tiny
 /// margin so both ends fall in valid cells; nullopt if the segment misses the rectangle.
 std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> ClipSegment(const MapLimits& limits,
-                                                                        const Eigen::Vector2d& a,
-                                                                        const Eigen::Vector2d& b);
+                                                                       const Eigen::Vector2d& a,
+                                                                       const Eigen::Vector2d& b);
 
 /// Calls visit(i, j) for every cell of Bresenham's 8-connected line from `from` to `to`, in order,
 /// `from` included; `to` included only if `include_end`. No bounds checks: the caller passes cells

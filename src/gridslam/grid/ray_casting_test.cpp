@@ -20,8 +20,8 @@ TEST(TraceLine, VisitsAConnectedLineFromStartToEnd) {
     ASSERT_FALSE(cells.empty());
     EXPECT_TRUE((cells.front() == Eigen::Array2i(0, 0)).all());
     EXPECT_TRUE((cells.back() == end).all());
-    EXPECT_EQ(cells.size(), static_cast<std::size_t>(std::max(std::abs(end.x()),
-                                                              std::abs(end.y())) + 1));
+    EXPECT_EQ(cells.size(),
+              static_cast<std::size_t>(std::max(std::abs(end.x()), std::abs(end.y())) + 1));
     for (std::size_t k = 1; k < cells.size(); ++k) {
       EXPECT_LE((cells[k] - cells[k - 1]).abs().maxCoeff(), 1);  // 8-connected, no gaps
     }

@@ -78,8 +78,8 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   const MapLimits& limits = Limits();
   const Eigen::Array2i offset =
       limits.CellIndex(p_odom) - Eigen::Array2i(limits.Width() / 2, limits.Height() / 2);
-  const int trigger = std::max(1, static_cast<int>(std::lround(options_.shift_distance /
-                                                               options_.resolution)));
+  const int trigger =
+      std::max(1, static_cast<int>(std::lround(options_.shift_distance / options_.resolution)));
   const Eigen::Array2i shift(std::abs(offset.x()) >= trigger ? offset.x() : 0,
                              std::abs(offset.y()) >= trigger ? offset.y() : 0);
   if ((shift == 0).all()) {

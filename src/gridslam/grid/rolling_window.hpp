@@ -31,7 +31,7 @@ struct CellSurface {
   float txx = 0.0F;  ///< Running mean of quality * n n^T of the hits' normals.
   float txy = 0.0F;
   float tyy = 0.0F;
-  float normal_x = 0.0F;   ///< Dominant unit normal (sign arbitrary); 0 if unknown.
+  float normal_x = 0.0F;  ///< Dominant unit normal (sign arbitrary); 0 if unknown.
   float normal_y = 0.0F;
   float planarity = 0.0F;  ///< lambda_max - lambda_min of the tensor, in [0, 1].
   std::uint16_t hits = 0;  ///< Hits averaged (capped at surface_memory).

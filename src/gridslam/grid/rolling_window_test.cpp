@@ -47,9 +47,9 @@ TEST(RollingWindow, StartsUnknownAndCentredOnTheRobot) {
   RollingWindow window(SmallWindow(), Eigen::Vector2d(1.02, -3.01));
   EXPECT_EQ(window.Limits().Width(), 161);
   EXPECT_TRUE(window.Limits().Contains(window.Limits().CellIndex({1.02, -3.01})));
-  EXPECT_TRUE((window.Limits().CellIndex(window.Centre()) ==
-               window.Limits().CellIndex({1.02, -3.01}))
-                  .all());
+  EXPECT_TRUE(
+      (window.Limits().CellIndex(window.Centre()) == window.Limits().CellIndex({1.02, -3.01}))
+          .all());
   EXPECT_EQ(window.NumObstacles(), 0);
   for (const float l : window.LogOdds().Cells()) {
     ASSERT_EQ(l, kUnknownLogOdds);
@@ -86,8 +86,13 @@ TEST(RollingWindow, NoReturnsNaNAndEmptyScansNeverMarkObstacles) {
     RollingWindow window(options, Eigen::Vector2d::Zero());
     LaserScan scan = WallScan(2.0, 361);
     for (std::size_t k = 0; k < scan.size(); ++k) {
-      const float values[] = {81.83F, 81.91F, 80.0F, std::numeric_limits<float>::quiet_NaN(),
-                              std::numeric_limits<float>::infinity(), -1.0F, 0.0F};
+      const float values[] = {81.83F,
+                              81.91F,
+                              80.0F,
+                              std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(),
+                              -1.0F,
+                              0.0F};
       scan.ranges[k] = values[k % 7];
     }
     window.InsertScan(Pose2(0.1, 0.2, 0.3), ExtractScanPoints(scan, Pose2(), 30.0));
@@ -121,13 +126,13 @@ TEST(RollingWindow, ShiftKeepsWorldCoordinatesAndForgetsLeavingCells) {
   EXPECT_EQ(shift.x(), expected_shift);
   EXPECT_EQ(shift.y(), 0);
   EXPECT_TRUE((window.PendingShift() == shift).all());
-  EXPECT_TRUE((window.Limits().CellIndex(window.Centre()) == window.Limits().CellIndex({1.3, 0.0}))
-                  .all());
+  EXPECT_TRUE(
+      (window.Limits().CellIndex(window.Centre()) == window.Limits().CellIndex({1.3, 0.0})).all());
   EXPECT_EQ(window.LogOdds().at(window.Limits().CellIndex(wall_point)), before);
   EXPECT_EQ(window.LogOdds().at(window.Limits().CellIndex(free_point)), free_before);
   EXPECT_EQ(window.NumObstacles(), obstacles);  // the wall is still inside
-  const auto index = static_cast<std::int32_t>(
-      window.Limits().LinearIndex(window.Limits().CellIndex(wall_point)));
+  const auto index =
+      static_cast<std::int32_t>(window.Limits().LinearIndex(window.Limits().CellIndex(wall_point)));
   EXPECT_NEAR(window.MeanPoint(index).x(), 2.02, 1e-3);
 
   // Move far enough for the wall to leave: its cells are forgotten; entering cells are unknown.

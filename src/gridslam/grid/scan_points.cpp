@@ -34,9 +34,9 @@ void EstimateNormal(const Eigen::Vector2d* window, int count, Eigen::Vector2d& n
     return;
   }
   // Direction of the line = eigenvector of l_max; the normal is perpendicular to it.
-  Eigen::Vector2d dir = std::abs(sxy) > 1e-12 ? Eigen::Vector2d(l_max - syy, sxy)
-                                             : (sxx >= syy ? Eigen::Vector2d(1.0, 0.0)
-                                                           : Eigen::Vector2d(0.0, 1.0));
+  Eigen::Vector2d dir = std::abs(sxy) > 1e-12
+                            ? Eigen::Vector2d(l_max - syy, sxy)
+                            : (sxx >= syy ? Eigen::Vector2d(1.0, 0.0) : Eigen::Vector2d(0.0, 1.0));
   dir.normalize();
   normal = Eigen::Vector2d(-dir.y(), dir.x());
   quality = static_cast<float>(1.0 - l_min / l_max);

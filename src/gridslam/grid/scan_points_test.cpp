@@ -15,7 +15,8 @@ TEST(ExtractScanPoints, AppliesTheMountingAndEstimatesNormals) {
   scan.range_min = 0.05;
   scan.range_max = 20.0;
   for (int k = 0; k <= 100; ++k) {  // a wall at x = 2 in the laser frame
-    scan.ranges.push_back(static_cast<float>(2.0 / std::cos(scan.Angle(static_cast<std::size_t>(k)))));
+    scan.ranges.push_back(
+        static_cast<float>(2.0 / std::cos(scan.Angle(static_cast<std::size_t>(k)))));
   }
   scan.ranges[50] = 20.0F;  // no return
   scan.ranges[51] = std::nanf("");

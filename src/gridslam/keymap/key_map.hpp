@@ -18,17 +18,17 @@ namespace gridslam::keymap {
 /// A scan held by a key map. "scan" is the robot base frame at the scan's time (what trajectory
 /// files report); the laser is at T_key_scan * T_base_laser.
 struct KeyMapScan {
-  Time time;          ///< Printed timestamp (the scan's identity).
-  Pose2 T_key_scan;   ///< Robot pose in the key-map frame.
+  Time time;           ///< Printed timestamp (the scan's identity).
+  Pose2 T_key_scan;    ///< Robot pose in the key-map frame.
   Pose2 T_base_laser;  ///< Laser mounting.
-  LaserScan scan;     ///< The ranges, if the front end keeps them (else empty).
+  LaserScan scan;      ///< The ranges, if the front end keeps them (else empty).
 };
 
 struct KeyMap {
-  int id = 0;          ///< 0, 1, 2, ... in creation order.
-  Time time;           ///< Time of the last scan inserted before the snapshot.
-  Pose2 T_odom_key;    ///< Key-map frame in the front end's odometry frame (yaw 0).
-  Grid2D<float> log_odds;  ///< The window's log-odds; MapLimits in the key-map frame.
+  int id = 0;                     ///< 0, 1, 2, ... in creation order.
+  Time time;                      ///< Time of the last scan inserted before the snapshot.
+  Pose2 T_odom_key;               ///< Key-map frame in the front end's odometry frame (yaw 0).
+  Grid2D<float> log_odds;         ///< The window's log-odds; MapLimits in the key-map frame.
   std::vector<KeyMapScan> scans;  ///< Scans added since the previous key map, in order.
 };
 

@@ -34,8 +34,7 @@ std::optional<KeyMap> KeyMapBuilder::MaybeSnapshot(const RollingWindow& window) 
   if (!last_origin_) {
     last_origin_ = window.Limits().Origin();  // the first window is the reference
   }
-  const bool moved =
-      (window.Limits().Origin() - *last_origin_).norm() > options_.keymap_distance;
+  const bool moved = (window.Limits().Origin() - *last_origin_).norm() > options_.keymap_distance;
   const bool waited = ToSeconds(pending_.back().time - *last_time_) > options_.keymap_period;
   if (!moved && !waited) {
     return std::nullopt;
@@ -55,8 +54,7 @@ KeyMap KeyMapBuilder::Snapshot(const RollingWindow& window) {
   key.id = next_id_++;
   key.time = pending_.back().time;
   key.T_odom_key = Pose2(window.Centre(), 0.0);
-  key.log_odds =
-      window.SnapshotInCentreFrame(options_.NumCells(window.Limits().Resolution()));
+  key.log_odds = window.SnapshotInCentreFrame(options_.NumCells(window.Limits().Resolution()));
   const Pose2 T_key_odom = key.T_odom_key.Inverse();
   key.scans.reserve(pending_.size());
   for (Pending& p : pending_) {

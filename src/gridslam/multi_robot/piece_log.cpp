@@ -8,7 +8,7 @@ Status WritePieceLog(const std::string& path, const std::vector<Frame>& frames,
                      const std::string& comment) {
   io::CarmenWriterOptions options;
   options.hostname = "gridslam-split";
-  options.laser_message = io::CarmenLaserMessage::kRawLaser1;
+  options.laser_message = io::CarmenLaserMessage::kRobotLaser1;
   const Time start = frames.empty() ? Time() : frames.front().time;
   io::CarmenWriter writer(path, options, start);
   if (!comment.empty()) {

@@ -18,14 +18,14 @@
 namespace gridslam::pose_graph {
 
 /// Error and Jacobians of one edge; x_i, x_j and z are (x, y, theta) vectors (theta need not be
-/// normalized). J_e_xi / J_e_xj may be null when not wanted.
+/// normalized), (cz, sz) = (cos, sin) of z's angle, precomputed by the caller. J_e_xi / J_e_xj
+/// may be null when not wanted.
 inline Eigen::Vector3d EdgeError(const Eigen::Vector3d& x_i, const Eigen::Vector3d& x_j,
-                                 const Eigen::Vector3d& z, Eigen::Matrix3d* J_e_xi = nullptr,
+                                 const Eigen::Vector3d& z, double cz, double sz,
+                                 Eigen::Matrix3d* J_e_xi = nullptr,
                                  Eigen::Matrix3d* J_e_xj = nullptr) {
   const double ci = std::cos(x_i.z());
   const double si = std::sin(x_i.z());
-  const double cz = std::cos(z.z());
-  const double sz = std::sin(z.z());
   const double dx = x_j.x() - x_i.x();
   const double dy = x_j.y() - x_i.y();
   // d = R_i^T (t_j - t_i): translation of X_i^-1 X_j.
@@ -51,6 +51,13 @@ inline Eigen::Vector3d EdgeError(const Eigen::Vector3d& x_i, const Eigen::Vector
     }
   }
   return e;
+}
+
+/// As above, computing cos and sin of z's angle.
+inline Eigen::Vector3d EdgeError(const Eigen::Vector3d& x_i, const Eigen::Vector3d& x_j,
+                                 const Eigen::Vector3d& z, Eigen::Matrix3d* J_e_xi = nullptr,
+                                 Eigen::Matrix3d* J_e_xj = nullptr) {
+  return EdgeError(x_i, x_j, z, std::cos(z.z()), std::sin(z.z()), J_e_xi, J_e_xj);
 }
 
 /// Error of edge `edge_index` of `graph` at the graph's current vertex poses.

@@ -72,6 +72,8 @@ class NormalEquations {
     BlockCholesky::Slot jj;
     BlockCholesky::Slot ij;  ///< Block (bi, bj) of H.
     Eigen::Vector3d z;
+    double cos_z = 1.0;
+    double sin_z = 0.0;
     Eigen::Matrix3d information;
   };
 
@@ -127,6 +129,8 @@ NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>
     s.bi = block_[U(s.i)];
     s.bj = block_[U(s.j)];
     s.z = graph.edge(k).T_i_j.ToVector();
+    s.cos_z = std::cos(s.z.z());
+    s.sin_z = std::sin(s.z.z());
     s.information = graph.edge(k).information;
     if (s.bi >= 0) {
       s.ii = cholesky_.Find(s.bi, s.bi);
@@ -146,7 +150,7 @@ void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kern
   double total_cost = 0.0;
   double total_chi2 = 0.0;
   for (const EdgeSlots& s : edges_) {
-    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z);
+    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, s.cos_z, s.sin_z);
     const double s2 = e.dot(s.information * e);
     double rho = s2;
     double weight = 1.0;
@@ -170,7 +174,8 @@ void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Ker
     if (s.bi < 0 && s.bj < 0) {
       continue;
     }
-    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, &J_i, &J_j);
+    const Eigen::Vector3d e =
+        EdgeError(x[U(s.i)], x[U(s.j)], s.z, s.cos_z, s.sin_z, &J_i, &J_j);
     double weight = 1.0;
     if (kernel.kind != 0) {
       double rho = 0.0;

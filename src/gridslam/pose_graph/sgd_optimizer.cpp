@@ -44,10 +44,21 @@ SgdOptimizer::SgdOptimizer(const PoseGraph& graph, SgdOptions options)
   }
   for (int k = 0; k < static_cast<int>(graph_.num_edges()); ++k) {
     const Edge& e = graph_.edge(k);
-    edges_.push_back(
-        SgdEdge{graph_.FromIndex(k), graph_.ToIndex(k), e.T_i_j.ToVector(), e.information, -1, 0});
+    edges_.push_back(MakeEdge(graph_.FromIndex(k), graph_.ToIndex(k), e.T_i_j, e.information));
   }
   Rebuild();
+}
+
+SgdOptimizer::SgdEdge SgdOptimizer::MakeEdge(int v1, int v2, const Pose2& z,
+                                             const Eigen::Matrix3d& information) {
+  SgdEdge edge;
+  edge.v1 = v1;
+  edge.v2 = v2;
+  edge.z = z.ToVector();
+  edge.information = information;
+  edge.cos_z = std::cos(z.theta());
+  edge.sin_z = std::sin(z.theta());
+  return edge;
 }
 
 void SgdOptimizer::AddVertex(int id, const Pose2& T_map_v, bool fixed) {
@@ -70,7 +81,7 @@ void SgdOptimizer::AddEdge(int from, int to, const Pose2& T_i_j,
   const int k = graph_.AddEdge(from, to, T_i_j, information);
   const int i = graph_.FromIndex(k);
   const int j = graph_.ToIndex(k);
-  edges_.push_back(SgdEdge{i, j, T_i_j.ToVector(), information, -1, 0});
+  edges_.push_back(MakeEdge(i, j, T_i_j, information));
   const SgdEdge& edge = edges_.back();
   const bool new_i = !attached_[U(i)] && !graph_.vertex(i).fixed;
   const bool new_j = !attached_[U(j)] && !graph_.vertex(j).fixed;

@@ -68,7 +68,10 @@ class SgdOptimizer {
     Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
     int top = -1;  ///< Lowest common ancestor (-1: the virtual root).
     int length = 0;
+    double cos_z = 1.0;  ///< cos and sin of z's angle.
+    double sin_z = 0.0;
   };
+  static SgdEdge MakeEdge(int v1, int v2, const Pose2& z, const Eigen::Matrix3d& information);
 
   // Structure (sgd_optimizer.cpp).
   void Rebuild();

@@ -13,17 +13,22 @@ namespace {
 
 std::size_t U(int i) { return static_cast<std::size_t>(i); }
 
-// R Omega R^T with R = diag(R2(theta), 1): the information of an error expressed in a frame
-// rotated by theta, here the global frame.
-Eigen::Matrix3d RotateInformation(const Eigen::Matrix3d& information, double theta) {
-  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  r(0, 0) = c;
-  r(0, 1) = -s;
-  r(1, 0) = s;
-  r(1, 1) = c;
-  return r * information * r.transpose();
+// diag(R Omega R^T) with R = diag(R2(theta), 1), (c, s) = (cos, sin) theta: the information of
+// an error expressed in a frame rotated by theta, here the global frame.
+Eigen::Vector3d RotatedDiagonal(const Eigen::Matrix3d& information, double c, double s) {
+  const double a = information(0, 0);
+  const double b = information(0, 1);
+  const double d = information(1, 1);
+  return {c * c * a - 2.0 * c * s * b + s * s * d, s * s * a + 2.0 * c * s * b + c * c * d,
+          information(2, 2)};
+}
+
+// R Omega R^T r, without forming the rotated matrix.
+Eigen::Vector3d RotatedProduct(const Eigen::Matrix3d& information, double c, double s,
+                               const Eigen::Vector3d& r) {
+  const Eigen::Vector3d local(c * r.x() + s * r.y(), -s * r.x() + c * r.y(), r.z());
+  const Eigen::Vector3d v = information * local;
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
 }
 
 }  // namespace
@@ -52,7 +57,7 @@ void SgdOptimizer::ComputePreconditioner() {
   for (const SgdEdge& edge : edges_) {
     // TORO rotates by the measurement's own angle; "g2o" by the predicted pose's.
     const double theta = toro ? edge.z.z() : pose_[U(edge.v1)].z() + edge.z.z();
-    const Eigen::Vector3d w = RotateInformation(edge.information, theta).diagonal();
+    const Eigen::Vector3d w = RotatedDiagonal(edge.information, std::cos(theta), std::sin(theta));
     bool any_free = false;
     for (const int start : {edge.v1, edge.v2}) {
       for (int v = start; v != edge.top; v = parent_[U(v)]) {
@@ -97,8 +102,11 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
   const Eigen::Vector3d r(p1.x() + c1 * edge.z.x() - s1 * edge.z.y() - p2.x(),
                           p1.y() + s1 * edge.z.x() + c1 * edge.z.y() - p2.y(),
                           NormalizeAngle(p1.z() + edge.z.z() - p2.z()));
-  const double theta_w = options_.variant == "toro" ? p1.z() : p1.z() + edge.z.z();
-  const Eigen::Vector3d d = 2.0 * (RotateInformation(edge.information, theta_w) * r);
+  // W = R Omega R^T with R = R(theta_1 + theta_z) ("g2o") or R(theta_1) ("toro").
+  const bool toro = options_.variant == "toro";
+  const double cw = toro ? c1 : c1 * edge.cos_z - s1 * edge.sin_z;
+  const double sw = toro ? s1 : s1 * edge.cos_z + c1 * edge.sin_z;
+  const Eigen::Vector3d d = 2.0 * RotatedProduct(edge.information, cw, sw, r);
 
   // Per-node schedules (Grisetti 2009): the edge uses the fastest rate on its path, t_edge;
   // slower nodes take a proportionally smaller share. A node's share is 1 / (M t) per

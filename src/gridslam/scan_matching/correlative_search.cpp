@@ -18,26 +18,27 @@ SearchResult CorrelativeSearch(const MatchingField& field, const ScanPoints& sca
     return best;
   }
   // Gaussian score by squared distance in cells^2 (an integer below the truncation radius).
-  const auto max_sq = static_cast<int>(std::ceil(field.MaxDistance() / res) *
-                                       std::ceil(field.MaxDistance() / res));
+  const auto max_sq =
+      static_cast<int>(std::ceil(field.MaxDistance() / res) * std::ceil(field.MaxDistance() / res));
   std::vector<float> table(static_cast<std::size_t>(max_sq) + 2);
   for (std::size_t k = 0; k < table.size(); ++k) {
     const double d2 = static_cast<double>(k) * res * res;
-    table[k] = static_cast<float>(std::exp(-0.5 * d2 / (options.search_sigma * options.search_sigma)));
+    table[k] =
+        static_cast<float>(std::exp(-0.5 * d2 / (options.search_sigma * options.search_sigma)));
   }
   auto score_of = [&](std::size_t index) {
     const float sq = field.SquaredDistanceCells(index);
     return sq <= static_cast<float>(max_sq) ? table[static_cast<std::size_t>(sq)] : 0.0F;
   };
-  const std::size_t stride = std::max<std::size_t>(1, (scan.points.size() + max_points - 1) /
-                                                          max_points);
+  const std::size_t stride =
+      std::max<std::size_t>(1, (scan.points.size() + max_points - 1) / max_points);
   std::vector<Eigen::Vector2d> points;
   for (std::size_t k = 0; k < scan.points.size(); k += stride) {
     points.push_back(scan.points[k]);
   }
-  const int linear_cells =
-      static_cast<int>(std::floor(options.search_linear_window / res / options.search_linear_step)) *
-      options.search_linear_step;
+  const int linear_cells = static_cast<int>(std::floor(options.search_linear_window / res /
+                                                       options.search_linear_step)) *
+                           options.search_linear_step;
   const int angular_steps =
       static_cast<int>(std::floor(options.search_angular_window / options.search_angular_step));
   std::vector<Eigen::Array2i> cells(points.size());
@@ -65,8 +66,7 @@ SearchResult CorrelativeSearch(const MatchingField& field, const ScanPoints& sca
         if (score > best_score) {
           best_score = score;
           best.score = sum / static_cast<double>(points.size());
-          best.T_odom_base =
-              Pose2(centre.translation() + Eigen::Vector2d(di, dj) * res, theta);
+          best.T_odom_base = Pose2(centre.translation() + Eigen::Vector2d(di, dj) * res, theta);
         }
       }
     }

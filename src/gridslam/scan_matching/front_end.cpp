@@ -40,12 +40,12 @@ Status FrontEndOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(local_map.Validate());
   GRIDSLAM_RETURN_IF_ERROR(matcher.Validate());
   GRIDSLAM_RETURN_IF_ERROR(keymap.Validate());
-  GRIDSLAM_RETURN_IF_ERROR(Require(insert_distance >= 0.0 && insert_angle >= 0.0 &&
-                                       insert_period >= 0.0,
-                                   "front_end insert thresholds >= 0"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_sigma_forward > 0.0 && odometry_sigma_lateral > 0.0 &&
-                                       odometry_sigma_theta > 0.0,
-                                   "front_end odometry sigmas > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(insert_distance >= 0.0 && insert_angle >= 0.0 && insert_period >= 0.0,
+              "front_end insert thresholds >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(
+      odometry_sigma_forward > 0.0 && odometry_sigma_lateral > 0.0 && odometry_sigma_theta > 0.0,
+      "front_end odometry sigmas > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(odometry_drift_xy >= 0.0 && odometry_drift_theta >= 0.0,
                                    "front_end odometry drifts >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(max_correction_xy > 0.0 && max_correction_theta > 0.0,

@@ -36,12 +36,12 @@ const char* ToString(FrameStatus status);
 
 /// What happened to one frame.
 struct FrontEndStep {
-  Time time;                ///< The frame's printed timestamp.
-  Pose2 T_odom_base;        ///< Estimated robot pose in the front end's (odometry) frame.
+  Time time;          ///< The frame's printed timestamp.
+  Pose2 T_odom_base;  ///< Estimated robot pose in the front end's (odometry) frame.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< Of the match, if matched.
   FrameStatus status = FrameStatus::kFirst;
-  MatchResult match;        ///< Details of the match (if one was attempted).
-  bool inserted = false;    ///< The scan was inserted into the local map.
+  MatchResult match;                      ///< Details of the match (if one was attempted).
+  bool inserted = false;                  ///< The scan was inserted into the local map.
   std::optional<keymap::KeyMap> key_map;  ///< A key map finished after this frame.
 };
 

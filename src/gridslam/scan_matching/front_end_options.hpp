@@ -24,8 +24,8 @@ struct FrontEndOptions {
   double odometry_sigma_theta = 0.05;    ///< [rad]
   double odometry_drift_xy = 0.2;        ///< [m per m travelled]
   double odometry_drift_theta = 0.2;     ///< [rad per rad turned]
-  double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
-  double max_correction_theta = 0.35;  ///< [rad]
+  double max_correction_xy = 0.5;        ///< Larger corrections of the prediction are rejected [m].
+  double max_correction_theta = 0.35;    ///< [rad]
 
   template <class V>
   void Visit(V& v) {

@@ -18,7 +18,7 @@ using internal::TestWorld;
 // frame).
 std::vector<Pose2> DriveThroughTheWorld() {
   const std::vector<Eigen::Vector2d> waypoints = {{8.5, 1.5}, {8.8, 3.7}, {14.5, 3.8}, {9.0, 3.7},
-                                                  {5.0, 5.5}, {1.5, 3.0}, {2.0, 1.2}, {6.0, 1.0}};
+                                                  {5.0, 5.5}, {1.5, 3.0}, {2.0, 1.2},  {6.0, 1.0}};
   std::vector<Pose2> poses = {Pose2(2.0, 1.0, 0.0)};
   for (const Eigen::Vector2d& target : waypoints) {
     while (true) {
@@ -115,8 +115,8 @@ TEST(FrontEnd, BeatsOdometryAndHandsOutEveryScanInOneKeyMap) {
   EXPECT_LT(estimate_xy, 0.5 * odometry_xy);
   EXPECT_LT(estimate_theta, 0.2 * odometry_theta);
   // Over the whole drive the drift stays small.
-  const Pose2 end_error = Between(Between(truth.front(), truth.back()),
-                                  Between(estimate.front(), estimate.back()));
+  const Pose2 end_error =
+      Between(Between(truth.front(), truth.back()), Between(estimate.front(), estimate.back()));
   EXPECT_LT(end_error.translation().norm(), 0.15);
 
   // Key maps: every scan exactly once, in order, with T_odom_key * T_key_scan = its pose.
@@ -155,16 +155,20 @@ TEST(FrontEnd, ScansWithoutReturnsFallBackToOdometryAndMarkNothing) {
   FrontEndOptions options;
   options.local_map.clear_no_returns = true;
   FrontEnd front_end(options);
+  Pose2 previous_estimate;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const long obstacles_before =
         front_end.Window() != nullptr ? front_end.Window()->NumObstacles() : 0;
-    const Pose2 previous = k > 0 ? frames[k - 1].T_odom_base : Pose2();
     const FrontEndStep step = front_end.AddFrame(frames[k]);
     if (k >= 20 && k < 30) {
       EXPECT_EQ(step.status, FrameStatus::kFallbackFewPoints);
       EXPECT_LE(front_end.Window()->NumObstacles(), obstacles_before);
-      (void)previous;
+      // The pose follows the odometry increment.
+      EXPECT_TRUE(IsApprox(Between(previous_estimate, step.T_odom_base),
+                           Between(frames[k - 1].T_odom_base, frames[k].T_odom_base), 1e-9,
+                           1e-9));
     }
+    previous_estimate = step.T_odom_base;
   }
   EXPECT_EQ(front_end.Stats().fallback_few_points, 10);
   EXPECT_EQ(front_end.Stats().matched, 49);

@@ -25,8 +25,8 @@ void ShiftField(distance_transform::SquaredDistanceField& field, std::vector<flo
       if (si < 0 || si >= w) {
         continue;
       }
-      const std::size_t src = static_cast<std::size_t>(sj) * static_cast<std::size_t>(w) +
-                              static_cast<std::size_t>(si);
+      const std::size_t src =
+          static_cast<std::size_t>(sj) * static_cast<std::size_t>(w) + static_cast<std::size_t>(si);
       const std::int32_t label = field.nearest[src];
       if (label < 0) {
         continue;
@@ -36,8 +36,8 @@ void ShiftField(distance_transform::SquaredDistanceField& field, std::vector<flo
       if (li < 0 || lj < 0 || li >= w || lj >= h) {
         continue;
       }
-      const std::size_t dst = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                              static_cast<std::size_t>(i);
+      const std::size_t dst =
+          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       squared[dst] = field.squared[src];
       nearest[dst] = lj * w + li;
       shifted_distance[dst] = distance[src];
@@ -60,8 +60,8 @@ void MatchingField::SetLimits(const MapLimits& limits) {
 void MatchingField::Rebuild(const RollingWindow& window) {
   SetLimits(window.Limits());
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
-  distance_transform::SquaredEuclideanDistanceTransform(
-      window.Obstacles().data(), limits_.Width(), limits_.Height(), field_, true, max_cells);
+  distance_transform::SquaredEuclideanDistanceTransform(window.Obstacles().data(), limits_.Width(),
+                                                        limits_.Height(), field_, true, max_cells);
   distance_.resize(field_.squared.size());
   const auto res = static_cast<float>(limits_.Resolution());
   const auto max_d = static_cast<float>(max_distance_);
@@ -89,9 +89,10 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
   scratch_sources_.resize(static_cast<std::size_t>(sw) * static_cast<std::size_t>(sh));
   const std::uint8_t* obstacles = window.Obstacles().data();
   for (int j = sj0; j < sj1; ++j) {
-    std::copy(obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si0,
-              obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si1,
-              scratch_sources_.data() + static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw));
+    std::copy(
+        obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si0,
+        obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si1,
+        scratch_sources_.data() + static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw));
   }
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
   distance_transform::SquaredEuclideanDistanceTransform(scratch_sources_.data(), sw, sh,
@@ -102,8 +103,8 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
     for (int i = i0; i < i1; ++i) {
       const std::size_t local = static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw) +
                                 static_cast<std::size_t>(i - si0);
-      const std::size_t global = static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                                 static_cast<std::size_t>(i);
+      const std::size_t global =
+          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       const std::int32_t label = scratch_field_.nearest[local];
       field_.squared[global] = scratch_field_.squared[local];
       distance_[global] = std::min(max_d, std::sqrt(scratch_field_.squared[local]) * res);
@@ -181,8 +182,8 @@ void MatchingField::Update(const RollingWindow& window) {
   }
   // Added obstacles: a brushfire stamp, d^2 = min(d^2, |cell - obstacle|^2) within the disk of
   // radius r (the truncation radius in cells).
-  const float max_squared = static_cast<float>(max_distance_ * max_distance_ * inv_resolution_ *
-                                               inv_resolution_);
+  const float max_squared =
+      static_cast<float>(max_distance_ * max_distance_ * inv_resolution_ * inv_resolution_);
   const auto res = static_cast<float>(limits_.Resolution());
   for (const std::int32_t index : changed) {
     if (obstacles[index] == 0) {

@@ -67,7 +67,8 @@ class MatchingField {
       }
       return max_distance_;
     }
-    const float* row = distance_.data() + static_cast<std::size_t>(j0) * static_cast<std::size_t>(w) +
+    const float* row = distance_.data() +
+                       static_cast<std::size_t>(j0) * static_cast<std::size_t>(w) +
                        static_cast<std::size_t>(i0);
     const double v00 = row[0];
     const double v10 = row[1];
@@ -101,7 +102,6 @@ class MatchingField {
   bool valid_ = false;
   long num_rebuilds_ = 0;
   long num_tile_updates_ = 0;
-
 };
 
 }  // namespace gridslam::scan_matching

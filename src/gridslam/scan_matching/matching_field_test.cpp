@@ -79,7 +79,8 @@ TEST(MatchingField, InterpolatesBetweenCellCentresAndClampsOutside) {
   window.InsertScan(Pose2(), ExtractScanPoints(scan, Pose2(), 30.0));
   MatchingField field(0.5);
   field.Update(window);
-  const Eigen::Vector2d obstacle = window.Limits().CellCenter(window.Limits().CellIndex({1.0, 0.0}));
+  const Eigen::Vector2d obstacle =
+      window.Limits().CellCenter(window.Limits().CellIndex({1.0, 0.0}));
   Eigen::Vector2d gradient;
   EXPECT_NEAR(field.Interpolate(obstacle, &gradient), 0.0, 1e-9);
   EXPECT_NEAR(field.Interpolate(obstacle + Eigen::Vector2d(0.0, 0.1), &gradient), 0.1, 1e-6);

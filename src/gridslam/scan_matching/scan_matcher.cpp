@@ -53,8 +53,8 @@ Status ScanMatcherOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(inlier_distance > 0.0, "matcher.inlier_distance > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(search_linear_window >= 0.0 && search_angular_window >= 0.0,
                                    "matcher search windows >= 0"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(search_angular_step > 0.0 && search_linear_step >= 1,
-                                   "matcher search steps > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(search_angular_step > 0.0 && search_linear_step >= 1, "matcher search steps > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(search_sigma > 0.0, "matcher.search_sigma > 0"));
   return Status::Ok();
 }
@@ -73,8 +73,8 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
   const double oy = limits.Origin().y();
   const int w = limits.Width();
   const int h = limits.Height();
-  const double max_corr2 = options_.max_correspondence_distance *
-                           options_.max_correspondence_distance;
+  const double max_corr2 =
+      options_.max_correspondence_distance * options_.max_correspondence_distance;
   const double inv_var = 1.0 / (options_.point_sigma * options_.point_sigma);
   const auto min_planarity = static_cast<float>(options_.min_planarity);
   GRIDSLAM_CHECK(!point_to_line_ || map.TracksSurfaces())
@@ -210,8 +210,8 @@ double ScanMatcher::Score(const RollingWindow& map, const MatchingField& field,
   const MapLimits& limits = field.Limits();
   const Eigen::Matrix2d R = pose.Rotation();
   const double inlier2 = options_.inlier_distance * options_.inlier_distance;
-  const double max_corr2 = options_.max_correspondence_distance *
-                           options_.max_correspondence_distance;
+  const double max_corr2 =
+      options_.max_correspondence_distance * options_.max_correspondence_distance;
   const float* log_odds = map.LogOdds().data();
   int observed = 0;
   int inliers = 0;

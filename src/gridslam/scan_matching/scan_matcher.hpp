@@ -26,12 +26,12 @@ namespace gridslam::scan_matching {
 struct MatchResult {
   Pose2 T_odom_base;  ///< Estimated robot pose in the local map's (odometry) frame.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< Of (x, y, theta) [m^2, rad^2].
-  double score = 0.0;     ///< Fraction of the points in observed cells that lie on the map.
-  int iterations = 0;     ///< Gauss-Newton iterations, all stages and starts.
+  double score = 0.0;       ///< Fraction of the points in observed cells that lie on the map.
+  int iterations = 0;       ///< Gauss-Newton iterations, all stages and starts.
   int correspondences = 0;  ///< Points matched at the final pose.
   bool converged = false;   ///< The last stage converged before max_iterations.
   bool searched = false;    ///< The correlative search ran.
-  bool ok = false;  ///< Enough correspondences; otherwise the pose is the prior.
+  bool ok = false;          ///< Enough correspondences; otherwise the pose is the prior.
 };
 
 class ScanMatcher {

@@ -17,23 +17,23 @@ struct ScanMatcherOptions {
   double max_correspondence_distance = 0.3;  ///< Truncation of the distance field [m].
   /// Robust (Cauchy) scales of the successive stages [m]; each stage iterates to convergence.
   std::vector<double> robust_scales = {0.15, 0.05};
-  int max_iterations = 10;             ///< Gauss-Newton iterations per stage.
-  double point_sigma = 0.03;           ///< Standard deviation of one point's residual [m].
+  int max_iterations = 10;    ///< Gauss-Newton iterations per stage.
+  double point_sigma = 0.03;  ///< Standard deviation of one point's residual [m].
   /// Normals less consistent than this (0..1) are not used: a map cell's for point_to_line, a
   /// scan point's (which restricts the distance gradient to it) for distance_field.
   double min_planarity = 0.5;
   double convergence_translation = 1e-4;  ///< Stop when a step is smaller [m] ...
   double convergence_rotation = 1e-4;     ///< ... and [rad].
-  int min_points = 20;          ///< Fewer returns: the frame falls back to odometry.
-  int min_correspondences = 15;  ///< Fewer matched points: the match is rejected.
-  double inlier_distance = 0.1;  ///< Points this close to the map count in the score [m].
+  int min_points = 20;                    ///< Fewer returns: the frame falls back to odometry.
+  int min_correspondences = 15;           ///< Fewer matched points: the match is rejected.
+  double inlier_distance = 0.1;           ///< Points this close to the map count in the score [m].
   double good_score = 0.5;  ///< A score below this after refining the prior triggers the search.
-  bool correlative_search = true;     ///< Enable the coarse search for poor priors.
-  double search_linear_window = 0.3;  ///< Half-width of the search in x and y [m].
+  bool correlative_search = true;       ///< Enable the coarse search for poor priors.
+  double search_linear_window = 0.3;    ///< Half-width of the search in x and y [m].
   double search_angular_window = 0.25;  ///< Half-width of the search in yaw [rad].
   double search_angular_step = 0.0175;  ///< Yaw step of the search [rad].
   int search_linear_step = 2;           ///< Translation step of the search [cells].
-  double search_sigma = 0.1;  ///< Width of the search's Gaussian score of a point [m].
+  double search_sigma = 0.1;            ///< Width of the search's Gaussian score of a point [m].
 
   template <class V>
   void Visit(V& v) {

@@ -15,7 +15,7 @@ using internal::TestWorld;
 
 // Poses around the room from which the map is built.
 std::vector<Pose2> MapPoses() {
-  return {{2.0, 1.0, 0.3},  {5.0, 1.2, 0.0},  {8.0, 2.0, 1.2},  {8.5, 5.5, 2.5}, {5.0, 5.8, 3.0},
+  return {{2.0, 1.0, 0.3},  {5.0, 1.2, 0.0},  {8.0, 2.0, 1.2},  {8.5, 5.5, 2.5},  {5.0, 5.8, 3.0},
           {1.5, 4.0, -1.8}, {4.5, 3.5, -0.7}, {11.5, 3.7, 0.0}, {14.0, 3.8, 3.1}, {6.0, 3.0, 1.6}};
 }
 
@@ -99,9 +99,9 @@ TEST(ScanMatcher, TooFewCorrespondencesAreNotOk) {
   scan.points = {{1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}};
   scan.normals.assign(3, Eigen::Vector2d::Zero());
   scan.normal_quality.assign(3, 0.0F);
-  const MatchResult result = ScanMatcher(MatcherOptions("distance_field"))
-                                 .Match(map.window, map.field, scan, Pose2(2.0, 1.0, 0.3),
-                                        Eigen::Matrix3d::Zero());
+  const MatchResult result =
+      ScanMatcher(MatcherOptions("distance_field"))
+          .Match(map.window, map.field, scan, Pose2(2.0, 1.0, 0.3), Eigen::Matrix3d::Zero());
   EXPECT_FALSE(result.ok);
 }
 

@@ -1,8 +1,8 @@
 #include "gridslam/pose_graph/internal/block_cholesky.hpp"
 
 #include <algorithm>
+#include <cmath>
 
-#include <Eigen/Cholesky>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 
@@ -13,6 +13,36 @@ namespace gridslam::pose_graph::internal {
 namespace {
 
 std::size_t U(int i) { return static_cast<std::size_t>(i); }
+
+// Cholesky factor of a symmetric 3x3 block, returned as its inverse L^-1 (lower triangular),
+// which is all the factorization and the solves need. False unless positive definite.
+bool InverseCholesky3(const Eigen::Matrix3d& d, Eigen::Matrix3d* inverse) {
+  if (!(d(0, 0) > 0.0)) {
+    return false;
+  }
+  const double l00 = std::sqrt(d(0, 0));
+  const double l10 = d(1, 0) / l00;
+  const double l20 = d(2, 0) / l00;
+  const double t11 = d(1, 1) - l10 * l10;
+  if (!(t11 > 0.0)) {
+    return false;
+  }
+  const double l11 = std::sqrt(t11);
+  const double l21 = (d(2, 1) - l20 * l10) / l11;
+  const double t22 = d(2, 2) - l20 * l20 - l21 * l21;
+  if (!(t22 > 0.0)) {
+    return false;
+  }
+  const double l22 = std::sqrt(t22);
+  const double i00 = 1.0 / l00;
+  const double i11 = 1.0 / l11;
+  const double i22 = 1.0 / l22;
+  const double i10 = -l10 * i00 * i11;
+  const double i21 = -l21 * i11 * i22;
+  const double i20 = -(l20 * i00 + l21 * i10) * i22;
+  *inverse << i00, 0.0, 0.0, i10, i11, 0.0, i20, i21, i22;
+  return true;
+}
 
 }  // namespace
 
@@ -77,26 +107,27 @@ BlockCholesky::BlockCholesky(int num_blocks, const std::vector<std::pair<int, in
   }
   // Row patterns of L (ereach, Davis §4.2), topologically ordered, and column counts.
   std::vector<int> mark(U(n_), -1);
-  std::vector<int> path;
+  std::vector<int> stack(U(n_));
   std::vector<int> counts(U(n_), 1);
   pattern_ptr_.assign(U(n_) + 1, 0);
   for (int k = 0; k < n_; ++k) {
     mark[U(k)] = k;
-    const std::size_t start = pattern_.size();
-    std::vector<int> row;
+    int top = n_;
     for (int p = a_col_[U(k)]; p < a_col_[U(k) + 1] - 1; ++p) {
-      path.clear();
+      // Walk up from each entry of column k until a node already reached; each path is pushed
+      // as a block on a stack, which leaves every node before its ancestors (cs_ereach).
+      int length = 0;
       for (int i = a_row_[U(p)]; mark[U(i)] != k; i = parent[U(i)]) {
-        path.push_back(i);
+        stack[U(length++)] = i;
         mark[U(i)] = k;
       }
-      // Each path goes bottom-up; stacking the paths in reverse order of discovery gives an
-      // order in which every node precedes its ancestors.
-      row.insert(row.begin(), path.begin(), path.end());
+      while (length > 0) {
+        stack[U(--top)] = stack[U(--length)];
+      }
     }
-    pattern_.insert(pattern_.end(), row.begin(), row.end());
-    for (std::size_t q = start; q < pattern_.size(); ++q) {
-      ++counts[U(pattern_[q])];
+    pattern_.insert(pattern_.end(), stack.begin() + top, stack.end());
+    for (int q = top; q < n_; ++q) {
+      ++counts[U(stack[U(q)])];
     }
     pattern_ptr_[U(k) + 1] = static_cast<int>(pattern_.size());
   }
@@ -142,9 +173,9 @@ bool BlockCholesky::Factorize(double lambda, bool scaled) {
     }
     for (int q = pattern_ptr_[U(k)]; q < pattern_ptr_[U(k) + 1]; ++q) {
       const int i = pattern_[U(q)];
-      // Y = L_ii^-1 X_i, then X_r -= L_ri Y for the rows r < k already in column i.
-      const Eigen::Matrix3d y =
-          l_values_[U(l_col_[U(i)])].triangularView<Eigen::Lower>().solve(x_[U(i)]);
+      // Y = L_ii^-1 X_i (the diagonal slot holds L_ii^-1), then X_r -= L_ri Y for the rows
+      // r < k already in column i.
+      const Eigen::Matrix3d y = l_values_[U(l_col_[U(i)])] * x_[U(i)];
       x_[U(i)].setZero();
       for (int p = l_col_[U(i)] + 1; p < next_[U(i)]; ++p) {
         x_[U(l_rows_[U(p)])].noalias() -= l_values_[U(p)] * y;
@@ -154,8 +185,8 @@ bool BlockCholesky::Factorize(double lambda, bool scaled) {
       l_rows_[U(slot)] = k;
       l_values_[U(slot)] = y.transpose();
     }
-    const Eigen::LLT<Eigen::Matrix3d> llt(d);
-    if (llt.info() != Eigen::Success) {
+    Eigen::Matrix3d inverse;
+    if (!InverseCholesky3(d, &inverse)) {
       for (int j = 0; j <= k; ++j) {
         next_[U(j)] = 0;
       }
@@ -163,7 +194,7 @@ bool BlockCholesky::Factorize(double lambda, bool scaled) {
       return false;
     }
     l_rows_[U(l_col_[U(k)])] = k;
-    l_values_[U(l_col_[U(k)])] = llt.matrixL();
+    l_values_[U(l_col_[U(k)])] = inverse;
     next_[U(k)] = l_col_[U(k)] + 1;
   }
   for (int k = 0; k < n_; ++k) {
@@ -179,8 +210,7 @@ Eigen::VectorXd BlockCholesky::Solve(const Eigen::VectorXd& b) const {
     y.segment<3>(3 * k) = b.segment<3>(3 * old_of_new_[U(k)]);
   }
   for (int j = 0; j < n_; ++j) {
-    const Eigen::Vector3d yj =
-        l_values_[U(l_col_[U(j)])].triangularView<Eigen::Lower>().solve(y.segment<3>(3 * j));
+    const Eigen::Vector3d yj = l_values_[U(l_col_[U(j)])] * y.segment<3>(3 * j);
     y.segment<3>(3 * j) = yj;
     for (int p = l_col_[U(j)] + 1; p < l_col_[U(j) + 1]; ++p) {
       y.segment<3>(3 * l_rows_[U(p)]).noalias() -= l_values_[U(p)] * yj;
@@ -191,8 +221,7 @@ Eigen::VectorXd BlockCholesky::Solve(const Eigen::VectorXd& b) const {
     for (int p = l_col_[U(j)] + 1; p < l_col_[U(j) + 1]; ++p) {
       yj.noalias() -= l_values_[U(p)].transpose() * y.segment<3>(3 * l_rows_[U(p)]);
     }
-    y.segment<3>(3 * j) =
-        l_values_[U(l_col_[U(j)])].transpose().triangularView<Eigen::Upper>().solve(yj);
+    y.segment<3>(3 * j) = l_values_[U(l_col_[U(j)])].transpose() * yj;
   }
   Eigen::VectorXd x(3 * n_);
   for (int k = 0; k < n_; ++k) {

@@ -56,7 +56,7 @@ class BlockCholesky {
   // Symbolic factorization: row patterns of L in topological order.
   std::vector<int> pattern_ptr_;
   std::vector<int> pattern_;
-  // L by columns; the diagonal block first in each.
+  // L by columns; the diagonal block first in each, stored as its inverse L_kk^-1.
   std::vector<int> l_col_;
   std::vector<int> l_rows_;
   std::vector<Eigen::Matrix3d> l_values_;
