@@ -64,11 +64,13 @@ nlohmann::json RecallByDistance(const std::vector<benchmark::PairOutcome>& posit
         correct += o.correct ? 1 : 0;
       }
     }
-    bands.push_back({{"from_m", k},
-                     {"to_m", k + 1},
-                     {"pairs", pairs},
-                     {"correct", correct},
-                     {"recall", Number(pairs > 0 ? static_cast<double>(correct) / static_cast<double>(pairs) : NAN)}});
+    bands.push_back(
+        {{"from_m", k},
+         {"to_m", k + 1},
+         {"pairs", pairs},
+         {"correct", correct},
+         {"recall",
+          Number(pairs > 0 ? static_cast<double>(correct) / static_cast<double>(pairs) : NAN)}});
   }
   return bands;
 }
@@ -135,10 +137,11 @@ void PrintText(const benchmark::AlignEvalReport& r) {
       "median_error_m=%.4f median_error_deg=%.3f\n",
       s.pairs, s.accepted, s.correct, s.wrong, s.precision, s.recall, s.median_error_m,
       s.median_error_deg);
-  std::printf("negatives=%ld false_accepts=%ld features_per_keymap=%.1f ms_per_keymap=%.2f "
-              "ms_per_pair=%.3f keymaps=%ld described=%ld\n",
-              s.negatives, s.false_accepts, s.features_per_keymap, s.ms_per_keymap, s.ms_per_pair,
-              r.key_maps, s.described);
+  std::printf(
+      "negatives=%ld false_accepts=%ld features_per_keymap=%.1f ms_per_keymap=%.2f "
+      "ms_per_pair=%.3f keymaps=%ld described=%ld\n",
+      s.negatives, s.false_accepts, s.features_per_keymap, s.ms_per_keymap, s.ms_per_pair,
+      r.key_maps, s.described);
 }
 
 /// A reason as one TSV token ("too few inliers" -> "too_few_inliers").
@@ -166,13 +169,12 @@ Status WritePairs(const std::string& path, const benchmark::AlignEvalReport& r) 
                     o.positive ? FormatSeconds(o.pair.t1).c_str() : "-",
                     o.positive ? FormatSeconds(o.pair.t2).c_str() : "-", o.pair.centre_distance,
                     o.accepted ? 1 : 0, Token(matching::ToString(o.reason)).c_str(),
-                    o.correct ? 1 : 0,
-                    o.error_translation, RadToDeg(o.error_rotation), o.error_translation_aligned,
-                    RadToDeg(o.error_rotation_aligned), o.features_a, o.features_b, o.matches,
-                    o.inliers, o.agreement, o.contradiction, 1e3 * o.seconds_align, o.pair.relations,
-                    o.pair.truth_spread_translation, RadToDeg(o.pair.truth_spread_rotation),
-                    o.pair.truth_checks, o.pair.truth_error_translation,
-                    RadToDeg(o.pair.truth_error_rotation));
+                    o.correct ? 1 : 0, o.error_translation, RadToDeg(o.error_rotation),
+                    o.error_translation_aligned, RadToDeg(o.error_rotation_aligned), o.features_a,
+                    o.features_b, o.matches, o.inliers, o.agreement, o.contradiction,
+                    1e3 * o.seconds_align, o.pair.relations, o.pair.truth_spread_translation,
+                    RadToDeg(o.pair.truth_spread_rotation), o.pair.truth_checks,
+                    o.pair.truth_error_translation, RadToDeg(o.pair.truth_error_rotation));
       out << line;
     }
   }
@@ -199,9 +201,12 @@ int RunAlignEval(const AlignEvalArgs& args, AppContext& context) {
   if (const Status s = options.Validate(); !s.ok()) {
     return ReportError(s.error());
   }
-  benchmark::AlignEvalConfig config{options.front_end,  options.description,
-                                    options.matching,   options.loop_closure.refinement,
-                                    eval,               options.eval.trajectory_frame == "laser"};
+  benchmark::AlignEvalConfig config{options.front_end,
+                                    options.description,
+                                    options.matching,
+                                    options.loop_closure.refinement,
+                                    eval,
+                                    options.eval.trajectory_frame == "laser"};
 
   auto frames = io::ReadCarmenLog(args.log, options.log);
   if (!frames.ok()) {
@@ -219,8 +224,7 @@ int RunAlignEval(const AlignEvalArgs& args, AppContext& context) {
     }
     truth = std::move(read.value());
   }
-  const auto report =
-      benchmark::RunAlignEval({frames.value(), relations.value(), truth}, config);
+  const auto report = benchmark::RunAlignEval({frames.value(), relations.value(), truth}, config);
   if (!report.ok()) {
     return ReportError(report.error());
   }

@@ -42,7 +42,7 @@ PoseGraph LoadChained(const std::string& path) {
 }
 
 OptimizationReport RunMethod(PoseGraph& graph, const std::string& method, int iterations,
-                       std::vector<double>* history = nullptr) {
+                             std::vector<double>* history = nullptr) {
   OptimizerOptions options;
   options.method = method;
   return pose_graph::Optimize(graph, options, iterations,

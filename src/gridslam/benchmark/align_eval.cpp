@@ -34,8 +34,7 @@ double Median(std::vector<double> values) {
 }
 
 double Ratio(long numerator, long denominator) {
-  return denominator > 0 ? static_cast<double>(numerator) / static_cast<double>(denominator)
-                         : kNaN;
+  return denominator > 0 ? static_cast<double>(numerator) / static_cast<double>(denominator) : kNaN;
 }
 
 struct Described {
@@ -87,9 +86,9 @@ PairOutcome AlignPair(const TestPair& pair, bool positive, const Described& a, c
                       outcome.error_rotation < max_rotation;
     // Negatives: an accepted alignment is false unless it lands near the (approximate) truth, as
     // it may for two far-apart key maps whose windows still share a corner.
-    outcome.gross = outcome.accepted &&
-                    (outcome.error_translation > config.eval.gross_translation ||
-                     outcome.error_rotation > DegToRad(config.eval.gross_rotation_deg));
+    outcome.gross =
+        outcome.accepted && (outcome.error_translation > config.eval.gross_translation ||
+                             outcome.error_rotation > DegToRad(config.eval.gross_rotation_deg));
   }
   return outcome;
 }
@@ -158,9 +157,9 @@ AlignEvalSummary Summarize(std::span<const PairOutcome> positives,
 }
 
 Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEvalConfig& config) {
-  for (const Status& s : {config.front_end.Validate(), config.description.Validate(),
-                          config.matching.Validate(), config.refinement.Validate(),
-                          config.eval.Validate()}) {
+  for (const Status& s :
+       {config.front_end.Validate(), config.description.Validate(), config.matching.Validate(),
+        config.refinement.Validate(), config.eval.Validate()}) {
     if (!s.ok()) {
       return s.error();
     }
@@ -178,10 +177,9 @@ Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEva
   report.frames = static_cast<long>(catalog.Frames().size());
   report.key_maps = static_cast<long>(catalog.KeyMaps().size());
   report.seconds_front_end = catalog.Seconds();
-  PositiveSelection positives = SelectPositives(catalog, input.relations, config.eval,
-                                                config.relations_in_laser_frame);
-  const NegativeSelection negatives =
-      SelectNegatives(catalog, input.ground_truth, config.eval);
+  PositiveSelection positives =
+      SelectPositives(catalog, input.relations, config.eval, config.relations_in_laser_frame);
+  const NegativeSelection negatives = SelectNegatives(catalog, input.ground_truth, config.eval);
   report.negative_candidates = negatives.candidates;
   report.negatives_from_ground_truth = negatives.from_ground_truth;
 

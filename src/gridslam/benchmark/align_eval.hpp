@@ -6,10 +6,11 @@
 // descriptions (matching, RANSAC, verification), accepted alignments are refined on the distance
 // field (loop_closure/grid_refinement.hpp) when enabled, as the mapper does, and the result is
 // compared with the truth: correct when the error is below correct_translation and
-// correct_rotation_deg, grossly wrong beyond gross_translation or gross_rotation_deg. Reported: pairs tried, accepted, correct, accepted-but-wrong, precision
-// (correct / accepted), recall (correct / pairs), median error of the correct ones, false accepts
-// among the negatives, features per key map, and the time per key map (description) and per pair
-// (alignment with features precomputed).
+// correct_rotation_deg, grossly wrong beyond gross_translation or gross_rotation_deg. Reported:
+// pairs tried, accepted, correct, accepted-but-wrong, precision (correct / accepted), recall
+// (correct / pairs), median error of the correct ones, false accepts among the negatives, features
+// per key map, and the time per key map (description) and per pair (alignment with features
+// precomputed).
 #pragma once
 
 #include <map>
@@ -41,8 +42,8 @@ struct AlignEvalConfig {
 };
 
 struct AlignEvalInput {
-  std::span<const Frame> frames;               ///< The log, in order.
-  std::span<const eval::Relation> relations;   ///< Its benchmark relations.
+  std::span<const Frame> frames;                    ///< The log, in order.
+  std::span<const eval::Relation> relations;        ///< Its benchmark relations.
   std::span<const eval::StampedPose> ground_truth;  ///< Optional T_world_base per scan.
 };
 
@@ -52,8 +53,8 @@ struct PairOutcome {
   bool positive = true;
   bool accepted = false;
   matching::RejectReason reason = matching::RejectReason::kTooFewMatches;
-  Pose2 T_a_b_aligned;   ///< The aligner's transform.
-  Pose2 T_a_b;           ///< The measurement: refined if refinement ran and succeeded.
+  Pose2 T_a_b_aligned;  ///< The aligner's transform.
+  Pose2 T_a_b;          ///< The measurement: refined if refinement ran and succeeded.
   bool refined = false;
   int features_a = 0;
   int features_b = 0;
@@ -71,7 +72,7 @@ struct PairOutcome {
   /// Accepted with an error beyond gross_translation or gross_rotation_deg (for negatives: a
   /// false accept).
   bool gross = false;
-  double seconds_align = 0.0;   ///< Matching + RANSAC + verification.
+  double seconds_align = 0.0;  ///< Matching + RANSAC + verification.
   double seconds_refine = 0.0;
 };
 
@@ -79,27 +80,27 @@ struct AlignEvalSummary {
   long pairs = 0;
   long accepted = 0;
   long correct = 0;
-  long wrong = 0;              ///< Accepted but wrong.
-  long gross_wrong = 0;        ///< Accepted and grossly wrong (part of `wrong`).
-  long correct_aligned = 0;    ///< Accepted with the aligner's transform already within limits.
-  double precision = 0.0;      ///< correct / accepted (NaN if nothing accepted).
-  double recall = 0.0;         ///< correct / pairs (NaN if no pairs).
-  double median_error_m = 0.0;         ///< Over the correct pairs (NaN if none).
+  long wrong = 0;               ///< Accepted but wrong.
+  long gross_wrong = 0;         ///< Accepted and grossly wrong (part of `wrong`).
+  long correct_aligned = 0;     ///< Accepted with the aligner's transform already within limits.
+  double precision = 0.0;       ///< correct / accepted (NaN if nothing accepted).
+  double recall = 0.0;          ///< correct / pairs (NaN if no pairs).
+  double median_error_m = 0.0;  ///< Over the correct pairs (NaN if none).
   double median_error_deg = 0.0;
-  double median_error_aligned_m = 0.0;   ///< The aligner's error over the correct pairs.
+  double median_error_aligned_m = 0.0;  ///< The aligner's error over the correct pairs.
   double median_error_aligned_deg = 0.0;
   long negatives = 0;
-  long negatives_accepted = 0;  ///< Accepted negatives, false or (rarely) near the truth.
-  long false_accepts = 0;       ///< Accepted negatives far from the truth.
-  double features_per_keymap = 0.0;   ///< Mean over the described key maps.
+  long negatives_accepted = 0;       ///< Accepted negatives, false or (rarely) near the truth.
+  long false_accepts = 0;            ///< Accepted negatives far from the truth.
+  double features_per_keymap = 0.0;  ///< Mean over the described key maps.
   double features_median = 0.0;
-  long described = 0;                 ///< Key maps described.
-  double ms_per_keymap = 0.0;         ///< Description (distance transform + features), mean.
+  long described = 0;          ///< Key maps described.
+  double ms_per_keymap = 0.0;  ///< Description (distance transform + features), mean.
   double ms_distance_per_keymap = 0.0;
   double ms_features_per_keymap = 0.0;
-  double ms_per_pair = 0.0;           ///< Alignment with features precomputed, mean over all pairs.
+  double ms_per_pair = 0.0;  ///< Alignment with features precomputed, mean over all pairs.
   double ms_per_pair_median = 0.0;
-  double ms_refine_per_accept = 0.0;  ///< Refinement, mean over refined alignments.
+  double ms_refine_per_accept = 0.0;     ///< Refinement, mean over refined alignments.
   std::map<std::string, long> rejected;  ///< Positives rejected, by RejectReason.
 };
 

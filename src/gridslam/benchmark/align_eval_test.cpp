@@ -45,8 +45,9 @@ const SimulatedLog& Log() {
   return log;
 }
 
-// Small windows keep the test fast and let key maps 10 m apart be true negatives.
-AlignEvalConfig SmallWindowConfig() {
+// The default configuration, with a few negatives (key maps more than 20 m apart: the loop's
+// opposite corners).
+AlignEvalConfig TestConfig() {
   AlignEvalConfig config;
   config.eval.negatives = 60;
   return config;
@@ -54,16 +55,13 @@ AlignEvalConfig SmallWindowConfig() {
 
 TEST(AlignEval, FindsTheRevisitsOfASimulatedLoopWithoutFalseAccepts) {
   const SimulatedLog& log = Log();
-  const AlignEvalConfig config = SmallWindowConfig();
+  const AlignEvalConfig config = TestConfig();
   const auto report = RunAlignEval({log.frames, log.relations, log.truth}, config);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   const AlignEvalReport& r = report.value();
   const AlignEvalSummary& s = r.summary;
   EXPECT_EQ(r.frames, static_cast<long>(log.frames.size()));
   EXPECT_GT(r.selection.revisits, 20);
-  std::fprintf(stderr, "frames %zu relations %zu t %.1f keymaps %ld\n", log.frames.size(), log.relations.size(), ToSeconds(log.frames.back().time - log.frames.front().time), r.key_maps);
-  std::fprintf(stderr, "pairs %ld correct %ld unreliable %ld unchecked %ld shared %ld\n", s.pairs, s.correct, r.selection.unreliable, r.selection.unchecked, r.selection.shared);
-  for (std::size_t i = 0; i < log.truth.size(); i += 50) std::fprintf(stderr, "%.1f %.2f %.2f\n", ToSeconds(log.truth[i].time - log.truth[0].time), log.truth[i].pose.x(), log.truth[i].pose.y());
   ASSERT_GE(s.pairs, 5);
   EXPECT_EQ(s.pairs, static_cast<long>(r.positives.size()));
   EXPECT_GE(s.correct, (3 * s.pairs) / 4) << "recall " << s.recall;
@@ -76,15 +74,14 @@ TEST(AlignEval, FindsTheRevisitsOfASimulatedLoopWithoutFalseAccepts) {
   EXPECT_GT(s.features_per_keymap, 5.0);
   EXPECT_GT(s.described, 0);
   for (const PairOutcome& o : r.positives) {
-    if (o.accepted && !o.correct) std::fprintf(stderr, "wrong %d %d err %.3f %.3f agree %.3f spread %.3f n %d checks %d %.3f %.3f\n", o.pair.key_a, o.pair.key_b, o.error_translation, RadToDeg(o.error_rotation), o.agreement, o.pair.truth_spread_translation, o.pair.relations, o.pair.truth_checks, o.pair.truth_error_translation, RadToDeg(o.pair.truth_error_rotation));
-    if (!o.accepted) std::fprintf(stderr, "rejected %d %d %s d %.2f feat %d %d\n", o.pair.key_a, o.pair.key_b, matching::ToString(o.reason), o.pair.centre_distance, o.features_a, o.features_b);
     EXPECT_NE(o.pair.key_a, o.pair.key_b);
+    EXPECT_GT(o.pair.truth_checks, 0);
     EXPECT_LE(o.pair.centre_distance, config.eval.max_centre_distance);
-    EXPECT_EQ(o.correct, o.accepted && o.error_translation < 0.1 &&
-                             o.error_rotation < DegToRad(1.0));
+    EXPECT_EQ(o.correct,
+              o.accepted && o.error_translation < 0.1 && o.error_rotation < DegToRad(1.0));
   }
   for (const PairOutcome& o : r.negatives) {
-    EXPECT_GT(o.pair.centre_distance, 10.0);
+    EXPECT_GT(o.pair.centre_distance, config.eval.negative_min_distance);
     EXPECT_LT(o.pair.key_a, o.pair.key_b);
   }
 }
@@ -94,7 +91,7 @@ TEST(AlignEval, FindsTheRevisitsOfASimulatedLoopWithoutFalseAccepts) {
 // both rest on the front end being locally consistent.
 TEST(AlignEval, PairTruthAgreesWithGroundTruth) {
   const SimulatedLog& log = Log();
-  AlignEvalConfig config = SmallWindowConfig();
+  AlignEvalConfig config = TestConfig();
   config.front_end.keymap.keep_scans = false;
   const KeyMapCatalog catalog = KeyMapCatalog::Build(log.frames, config.front_end);
   const PositiveSelection positives =
@@ -113,23 +110,33 @@ TEST(AlignEval, PairTruthAgreesWithGroundTruth) {
     const Pose2 error =
         Between(Between(T_world_key(pair.key_a), T_world_key(pair.key_b)), pair.T_a_b_true);
     EXPECT_LT(error.translation().norm(), 0.05);
-    std::fprintf(stderr, "pair %d %d err %.3f %.3f f1 %d f2 %d\n", pair.key_a, pair.key_b, error.translation().norm(), RadToDeg(error.theta()), f1, catalog.FindFrame(pair.t2, 1e-6));
-    for (int k : {pair.key_a, pair.key_b}) {
-      const auto& km = catalog.KeyMaps()[static_cast<std::size_t>(k)];
-      const auto& fa = catalog.Frames()[static_cast<std::size_t>(km.first_frame)];
-      const auto& fb = catalog.Frames()[static_cast<std::size_t>(km.last_frame)];
-      const Pose2 fe = Between(fa.T_odom_base, fb.T_odom_base);
-      const Pose2 gt = Between(*log.frames[static_cast<std::size_t>(km.first_frame)].T_world_base_true, *log.frames[static_cast<std::size_t>(km.last_frame)].T_world_base_true);
-      const Pose2 od = Between(log.frames[static_cast<std::size_t>(km.first_frame)].T_odom_base, log.frames[static_cast<std::size_t>(km.last_frame)].T_odom_base);
-      std::fprintf(stderr, "key %d frames %d-%d travel %.2f fe-gt %.3f %.3f odo-gt %.3f\n", k, km.first_frame, km.last_frame, fb.travel - fa.travel, Between(gt, fe).translation().norm(), RadToDeg(Between(gt, fe).theta()), Between(gt, od).translation().norm());
-    }
     EXPECT_LT(std::abs(error.theta()), DegToRad(0.5));
   }
 }
 
+// Where the front end disagrees with the short relations around a revisit, the revisit's truth is
+// not trusted: corrupting every short relation by 0.3 m leaves no pair.
+TEST(AlignEval, TruthCheckDropsPairsWhereTheFrontEndIsInaccurate) {
+  const SimulatedLog& log = Log();
+  const AlignEvalConfig config = TestConfig();
+  const KeyMapCatalog catalog = KeyMapCatalog::Build(log.frames, config.front_end);
+  const PositiveSelection clean = SelectPositives(catalog, log.relations, config.eval, false);
+  ASSERT_GE(clean.pairs.size(), 5U);
+  std::vector<eval::Relation> corrupted = log.relations;
+  for (eval::Relation& relation : corrupted) {
+    if (ToSeconds(relation.t2 - relation.t1) <= config.eval.truth_check_max_dt) {
+      relation.T_1_2 = relation.T_1_2 * Pose2(0.3, 0.0, 0.0);
+    }
+  }
+  const PositiveSelection dropped = SelectPositives(catalog, corrupted, config.eval, false);
+  EXPECT_TRUE(dropped.pairs.empty());
+  EXPECT_EQ(dropped.unreliable,
+            clean.unreliable + clean.duplicates + static_cast<long>(clean.pairs.size()));
+}
+
 TEST(AlignEval, WindowsSeparateOnlyAfterTheRobotLeft) {
   const SimulatedLog& log = Log();
-  AlignEvalConfig config = SmallWindowConfig();
+  AlignEvalConfig config = TestConfig();
   const KeyMapCatalog catalog = KeyMapCatalog::Build(log.frames, config.front_end);
   ASSERT_GT(catalog.KeyMaps().size(), 20U);
   EXPECT_FALSE(catalog.WindowsSeparated(0, 1));

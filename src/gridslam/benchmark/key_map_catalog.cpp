@@ -11,8 +11,7 @@
 namespace gridslam::benchmark {
 namespace {
 
-KeyMapRecord Record(const keymap::KeyMap& key_map, int first_frame, int last_frame,
-                    double travel) {
+KeyMapRecord Record(const keymap::KeyMap& key_map, int first_frame, int last_frame, double travel) {
   KeyMapRecord record;
   record.id = key_map.id;
   record.T_odom_key = key_map.T_odom_key;

@@ -25,21 +25,21 @@ namespace gridslam::benchmark {
 /// One key map of a front-end run.
 struct KeyMapRecord {
   int id = 0;
-  Pose2 T_odom_key;          ///< Key-map frame (window centre, yaw 0) in the front end's frame.
+  Pose2 T_odom_key;  ///< Key-map frame (window centre, yaw 0) in the front end's frame.
   Eigen::Vector2d window_min = Eigen::Vector2d::Zero();  ///< Window corners, odometry frame [m].
   Eigen::Vector2d window_max = Eigen::Vector2d::Zero();
-  int first_frame = 0;       ///< Index of the first scan it holds.
-  int last_frame = 0;        ///< Index of the last scan it holds.
-  double travel = 0.0;       ///< Path length driven up to its last scan [m].
+  int first_frame = 0;  ///< Index of the first scan it holds.
+  int last_frame = 0;   ///< Index of the last scan it holds.
+  double travel = 0.0;  ///< Path length driven up to its last scan [m].
 };
 
 /// One scan of a front-end run.
 struct FrameRecord {
-  Time time;                 ///< Printed timestamp.
-  Pose2 T_odom_base;         ///< Front-end estimate.
-  Pose2 T_base_laser;        ///< Laser mounting.
-  int key_map = -1;          ///< Key map holding the scan.
-  double travel = 0.0;       ///< Path length driven up to this scan [m].
+  Time time;            ///< Printed timestamp.
+  Pose2 T_odom_base;    ///< Front-end estimate.
+  Pose2 T_base_laser;   ///< Laser mounting.
+  int key_map = -1;     ///< Key map holding the scan.
+  double travel = 0.0;  ///< Path length driven up to this scan [m].
 };
 
 class KeyMapCatalog {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <random>
-#include <map>
 #include <utility>
 
 #include "gridslam/common/angles.hpp"
@@ -13,8 +13,7 @@ namespace gridslam::benchmark {
 namespace {
 
 /// The pose of `truth` (sorted by time) nearest to `time`, if within `tolerance` [s].
-std::optional<Pose2> LookUp(std::span<const eval::StampedPose> truth, Time time,
-                            double tolerance) {
+std::optional<Pose2> LookUp(std::span<const eval::StampedPose> truth, Time time, double tolerance) {
   auto it = std::lower_bound(truth.begin(), truth.end(), time,
                              [](const eval::StampedPose& p, Time t) { return p.time < t; });
   std::optional<Pose2> best;
@@ -34,9 +33,9 @@ std::optional<Pose2> LookUp(std::span<const eval::StampedPose> truth, Time time,
 
 /// True frame of each key map in the world: T_world_key = T_world_base(t) * T_key_base(t)^-1
 /// for the scan nearest the middle of its scans that has ground truth.
-std::vector<std::optional<Pose2>> TrueKeyMapPoses(
-    const KeyMapCatalog& catalog, std::span<const eval::StampedPose> ground_truth,
-    double tolerance) {
+std::vector<std::optional<Pose2>> TrueKeyMapPoses(const KeyMapCatalog& catalog,
+                                                  std::span<const eval::StampedPose> ground_truth,
+                                                  double tolerance) {
   std::vector<eval::StampedPose> truth(ground_truth.begin(), ground_truth.end());
   std::stable_sort(truth.begin(), truth.end(),
                    [](const auto& a, const auto& b) { return a.time < b.time; });

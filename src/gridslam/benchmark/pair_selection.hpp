@@ -56,15 +56,15 @@ struct TestPair {
 
 struct PositiveSelection {
   std::vector<TestPair> pairs;
-  long relations = 0;       ///< Relations read.
-  long revisits = 0;        ///< Of them, with |t2 - t1| > min_time_gap.
-  long missing_scan = 0;    ///< Revisits with a timestamp matching no scan.
-  long same_key_map = 0;    ///< Revisits with both scans in one key map.
-  long too_far = 0;         ///< Revisits whose key maps' centres are too far apart.
-  long shared = 0;          ///< Revisits whose key maps share local-map data (skipped).
-  long unreliable = 0;      ///< Revisits where the front end was locally inaccurate (skipped).
-  long unchecked = 0;       ///< Pairs tested without a short relation to check the front end.
-  long duplicates = 0;      ///< Revisits of a key-map pair already tested.
+  long relations = 0;     ///< Relations read.
+  long revisits = 0;      ///< Of them, with |t2 - t1| > min_time_gap.
+  long missing_scan = 0;  ///< Revisits with a timestamp matching no scan.
+  long same_key_map = 0;  ///< Revisits with both scans in one key map.
+  long too_far = 0;       ///< Revisits whose key maps' centres are too far apart.
+  long shared = 0;        ///< Revisits whose key maps share local-map data (skipped).
+  long unreliable = 0;    ///< Revisits where the front end was locally inaccurate (skipped).
+  long unchecked = 0;     ///< Pairs tested without a short relation to check the front end.
+  long duplicates = 0;    ///< Revisits of a key-map pair already tested.
 };
 
 /// Positive pairs (see above). `relations_in_laser_frame`: the relations describe laser poses.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -37,6 +39,38 @@ Grid2D<T> Shifted(const Grid2D<T>& grid, int di, int dj, const T& fill) {
   return out;
 }
 
+// Moves a row-major w x h array in place by (di, dj) cells (new (i, j) = old (i + di, j + dj));
+// entering cells get `fill`. T must be trivially copyable.
+template <typename T>
+void ShiftInPlace(std::vector<T>& cells, int w, int h, int di, int dj, const T& fill) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto uw = static_cast<std::size_t>(w);
+  const int i0 = std::max(0, -di);  // first destination column with a source
+  const int i1 = std::min(w, w - di);
+  const auto count = static_cast<std::size_t>(std::max(0, i1 - i0));
+  auto move_row = [&](int j) {
+    T* row = cells.data() + static_cast<std::size_t>(j) * uw;
+    const int src_j = j + dj;
+    if (src_j < 0 || src_j >= h || count == 0) {
+      std::fill(row, row + uw, fill);
+      return;
+    }
+    const T* src = cells.data() + static_cast<std::size_t>(src_j) * uw + (i0 + di);
+    std::memmove(static_cast<void*>(row + i0), static_cast<const void*>(src), count * sizeof(T));
+    std::fill(row, row + i0, fill);
+    std::fill(row + i0 + count, row + uw, fill);
+  };
+  if (dj >= 0) {  // sources lie at or after their destinations: go forwards
+    for (int j = 0; j < h; ++j) {
+      move_row(j);
+    }
+  } else {
+    for (int j = h - 1; j >= 0; --j) {
+      move_row(j);
+    }
+  }
+}
+
 }  // namespace
 
 RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom,
@@ -57,7 +91,7 @@ RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector
   log_odds_ = Grid2D<float>(limits, kUnknownLogOdds);
   obstacles_ = Grid2D<std::uint8_t>(limits, 0);
   if (track_surfaces_) {
-    surfaces_ = Grid2D<CellSurface>(limits, CellSurface{});
+    surfaces_.assign(static_cast<std::size_t>(limits.NumCells()), CellSurface{});
   }
   stamps_.assign(static_cast<std::size_t>(limits.NumCells()), 0);
 }
@@ -69,7 +103,7 @@ Eigen::Vector2d RollingWindow::Centre() const {
 
 Eigen::Vector2d RollingWindow::MeanPoint(std::int32_t index) const {
   const int w = Limits().Width();
-  const CellSurface& s = surfaces_.data()[index];
+  const CellSurface& s = surfaces_[static_cast<std::size_t>(index)];
   return Limits().CellCenter(Eigen::Array2i(index % w, index / w)) +
          Eigen::Vector2d(s.mean_x, s.mean_y);
 }
@@ -88,7 +122,8 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   log_odds_ = Shifted(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
   obstacles_ = Shifted(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
   if (track_surfaces_) {
-    surfaces_ = Shifted(surfaces_, shift.x(), shift.y(), CellSurface{});
+    ShiftInPlace(surfaces_, Limits().Width(), Limits().Height(), shift.x(), shift.y(),
+                 CellSurface{});
   }
   std::fill(stamps_.begin(), stamps_.end(), 0U);
   stamp_ = 0;
@@ -136,7 +171,7 @@ void RollingWindow::ApplyMiss(std::size_t index) {
     obstacle = 0;
     --num_obstacles_;
     if (track_surfaces_) {
-      surfaces_.data()[index] = CellSurface{};
+      surfaces_[index] = CellSurface{};
     }
     MarkChanged(index);
   }
@@ -193,26 +228,18 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
     if (!track_surfaces_) {
       continue;
     }
-    CellSurface& s = surfaces_.data()[index];
+    CellSurface& s = surfaces_[index];
     s.hits = std::min<std::uint16_t>(static_cast<std::uint16_t>(s.hits + 1), memory);
     const float a = 1.0F / static_cast<float>(s.hits);
     const Eigen::Vector2f local = (p - limits.CellCenter(cell)).cast<float>();
     s.mean_x += a * (local.x() - s.mean_x);
     s.mean_y += a * (local.y() - s.mean_y);
-    const Eigen::Vector2f n = (R * scan.normals[k]).cast<float>();
-    const float q = scan.normal_quality[k];
-    s.txx += a * (q * n.x() * n.x() - s.txx);
-    s.txy += a * (q * n.x() * n.y() - s.txy);
-    s.tyy += a * (q * n.y() * n.y() - s.tyy);
-    const float half = 0.5F * (s.txx + s.tyy);
-    const float root = std::sqrt(0.25F * (s.txx - s.tyy) * (s.txx - s.tyy) + s.txy * s.txy);
-    s.planarity = 2.0F * root;
-    Eigen::Vector2f e = std::abs(s.txy) > 1e-9F ? Eigen::Vector2f(half + root - s.tyy, s.txy)
-                                                : (s.txx >= s.tyy ? Eigen::Vector2f(1.0F, 0.0F)
-                                                                  : Eigen::Vector2f(0.0F, 1.0F));
-    e.normalize();
-    s.normal_x = e.x();
-    s.normal_y = e.y();
+    Eigen::Vector2f n = (R * scan.normals[k]).cast<float>() * scan.normal_quality[k];
+    if (n.x() * s.normal_x + n.y() * s.normal_y < 0.0F) {
+      n = -n;  // normals have no sign: agree with the mean so far
+    }
+    s.normal_x += a * (n.x() - s.normal_x);
+    s.normal_y += a * (n.y() - s.normal_y);
   }
   for (std::size_t k = 0; k < scan.size(); ++k) {
     const Eigen::Vector2d& pb = scan.points[k];

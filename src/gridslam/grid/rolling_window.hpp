@@ -1,17 +1,18 @@
 // The rolling-window local occupancy map of the front end (DESIGN.md §1.3; paper reconstruction
-// §1.4): a log-odds grid (0.05 m cells, 12-15 m side) axis-aligned with the front end's odometry
-// frame and centred on the robot. When the robot is more than `shift_distance` from the centre
-// along x or y, the window moves by the whole offset along that axis, in whole cells, so world
-// coordinates of the cells that stay are unchanged; cells leaving are forgotten and cells entering
-// start unknown. Scans are inserted with an inverse sensor model (hits at the end cell, misses
-// along the Bresenham ray, each cell updated at most once per scan as in Cartographer's
-// ProbabilityGrid; max-range readings never mark and clear only if enabled, up to a cap).
-// Besides the log-odds, the window keeps for every obstacle cell the running mean of the points
-// that hit it and of their surface normals, which gives the scan matcher sub-cell, point-to-line
-// correspondences; and it tracks which cells changed obstacle status so a distance field over the
-// obstacles can be updated incrementally.
+// §1.4): a log-odds grid (0.05 m cells; 25 m side by default, key maps are its central 15 m)
+// axis-aligned with the front end's odometry frame and centred on the robot. When the robot is
+// more than `shift_distance` from the centre along x or y, the window moves by the whole offset
+// along that axis, in whole cells, so world coordinates of the cells that stay are unchanged;
+// cells leaving are forgotten and cells entering start unknown. Scans are inserted with an
+// inverse sensor model (hits at the end cell, misses along the Bresenham ray, each cell updated
+// at most once per scan as in Cartographer's ProbabilityGrid; max-range readings never mark and
+// clear only if enabled, up to a cap). Besides the log-odds, the window can keep for every cell
+// the running mean of the points that hit it and of their surface normals (sub-cell
+// point-to-line correspondences for the matcher), and it tracks which cells changed obstacle
+// status so a distance field over the obstacles can be updated incrementally.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -24,17 +25,20 @@
 
 namespace gridslam {
 
-/// What an obstacle cell knows about the surface that hit it.
+/// What an obstacle cell knows about the surface that hit it (20 bytes).
 struct CellSurface {
-  float mean_x = 0.0F;  ///< Mean hit point relative to the cell centre [m].
+  float mean_x = 0.0F;  ///< Running mean of the hits, relative to the cell centre [m].
   float mean_y = 0.0F;
-  float txx = 0.0F;  ///< Running mean of quality * n n^T of the hits' normals.
-  float txy = 0.0F;
-  float tyy = 0.0F;
-  float normal_x = 0.0F;  ///< Dominant unit normal (sign arbitrary); 0 if unknown.
+  /// Running mean of the hits' unit normals, each weighted by its quality and flipped to agree
+  /// with the mean so far: its direction is the surface normal, its length (in [0, 1]) how
+  /// consistent the normals were.
+  float normal_x = 0.0F;
   float normal_y = 0.0F;
-  float planarity = 0.0F;  ///< lambda_max - lambda_min of the tensor, in [0, 1].
   std::uint16_t hits = 0;  ///< Hits averaged (capped at surface_memory).
+
+  [[nodiscard]] float Planarity() const {
+    return std::sqrt(normal_x * normal_x + normal_y * normal_y);
+  }
 };
 
 class RollingWindow {
@@ -53,7 +57,11 @@ class RollingWindow {
   [[nodiscard]] const Grid2D<float>& LogOdds() const { return log_odds_; }
   /// 1 where the cell is an obstacle (probability > occupied_probability), else 0.
   [[nodiscard]] const Grid2D<std::uint8_t>& Obstacles() const { return obstacles_; }
-  [[nodiscard]] const Grid2D<CellSurface>& Surfaces() const { return surfaces_; }
+  /// Surface statistics of every cell, row-major like LogOdds(); null without track_surfaces.
+  [[nodiscard]] const CellSurface* Surfaces() const {
+    return surfaces_.empty() ? nullptr : surfaces_.data();
+  }
+  [[nodiscard]] const CellSurface& Surface(std::size_t index) const { return surfaces_[index]; }
   [[nodiscard]] bool TracksSurfaces() const { return track_surfaces_; }
   /// Mean hit point of cell `index` (linear) in the odometry frame [m].
   [[nodiscard]] Eigen::Vector2d MeanPoint(std::int32_t index) const;
@@ -94,7 +102,7 @@ class RollingWindow {
   float occupied_ = 0.0F;
   Grid2D<float> log_odds_;
   Grid2D<std::uint8_t> obstacles_;
-  Grid2D<CellSurface> surfaces_;
+  std::vector<CellSurface> surfaces_;  ///< Row-major; shifted in place (it is the largest).
   std::vector<std::uint32_t> stamps_;  ///< Last scan that updated each cell.
   std::uint32_t stamp_ = 0;
   long num_obstacles_ = 0;

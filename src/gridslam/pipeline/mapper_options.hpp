@@ -26,7 +26,7 @@ struct GraphOptions {
   double online_trigger_xy = 0.05;      ///< [m]
   double online_trigger_theta = 0.01;  ///< [rad]
   /// Final optimization of the whole graph: gn, lm, sgd+gn, sgd or none.
-  std::string final_method = "lm";
+  std::string final_method = "gn";
   /// Rounds of final optimization + pruning of inconsistent loop edges [-].
   int prune_rounds = 3;
   /// Corrected scan poses interpolate the drift correction between neighbouring key maps.

@@ -174,8 +174,7 @@ void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Ker
     if (s.bi < 0 && s.bj < 0) {
       continue;
     }
-    const Eigen::Vector3d e =
-        EdgeError(x[U(s.i)], x[U(s.j)], s.z, s.cos_z, s.sin_z, &J_i, &J_j);
+    const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, s.cos_z, s.sin_z, &J_i, &J_j);
     double weight = 1.0;
     if (kernel.kind != 0) {
       double rho = 0.0;

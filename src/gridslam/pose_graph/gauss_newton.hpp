@@ -6,9 +6,9 @@
 // sparse Cholesky (Eigen's SimplicialLDLT). Fixed vertices (and one anchor per component, see
 // graph_utils.hpp) are left out of the system. Gauss-Newton backtracks (halves the step) when a
 // step would raise the cost, and stops if halving does not help, so the cost never increases;
-// Levenberg-Marquardt damps with lambda * diag(H) (Marquardt) and Nielsen's update. Optional robust kernels
-// (Huber, Cauchy) reweight each edge by rho'(e^T Omega e) (iteratively reweighted least squares,
-// as g2o does), for loop closures that may be wrong.
+// Levenberg-Marquardt damps with lambda * diag(H) (Marquardt) and Nielsen's update. Optional robust
+// kernels (Huber, Cauchy) reweight each edge by rho'(e^T Omega e) (iteratively reweighted least
+// squares, as g2o does), for loop closures that may be wrong.
 #pragma once
 
 #include <functional>

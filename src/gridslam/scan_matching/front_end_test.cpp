@@ -165,8 +165,7 @@ TEST(FrontEnd, ScansWithoutReturnsFallBackToOdometryAndMarkNothing) {
       EXPECT_LE(front_end.Window()->NumObstacles(), obstacles_before);
       // The pose follows the odometry increment.
       EXPECT_TRUE(IsApprox(Between(previous_estimate, step.T_odom_base),
-                           Between(frames[k - 1].T_odom_base, frames[k].T_odom_base), 1e-9,
-                           1e-9));
+                           Between(frames[k - 1].T_odom_base, frames[k].T_odom_base), 1e-9, 1e-9));
     }
     previous_estimate = step.T_odom_base;
   }

@@ -79,7 +79,7 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
   const auto min_planarity = static_cast<float>(options_.min_planarity);
   GRIDSLAM_CHECK(!point_to_line_ || map.TracksSurfaces())
       << "the point_to_line residual needs a map that tracks surfaces";
-  const CellSurface* surfaces = map.Surfaces().data();
+  const CellSurface* surfaces = map.Surfaces();
 
   Eigen::Vector3d x = start.ToVector();
   MatchResult result;
@@ -120,9 +120,10 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
           }
           ++system.correspondences;
           const CellSurface& surface = surfaces[nearest];
-          if (surface.planarity >= min_planarity) {
-            const double nx = surface.normal_x;
-            const double ny = surface.normal_y;
+          const float planarity = surface.Planarity();
+          if (planarity >= min_planarity) {
+            const double nx = surface.normal_x / planarity;
+            const double ny = surface.normal_y / planarity;
             const double r = nx * ex + ny * ey;
             const Eigen::Vector3d J(nx, ny, -nx * dy + ny * dx);
             system.Add(J, r, inv_var * CauchyWeight(r, scale));
@@ -228,11 +229,15 @@ double ScanMatcher::Score(const RollingWindow& map, const MatchingField& field,
     if (nearest >= 0) {
       if (point_to_line_) {
         const Eigen::Vector2d e = p - map.MeanPoint(nearest);
-        const CellSurface& surface = map.Surfaces().data()[nearest];
-        const double along_normal = surface.normal_x * e.x() + surface.normal_y * e.y();
-        e2 = surface.planarity >= static_cast<float>(options_.min_planarity)
-                 ? along_normal * along_normal
-                 : e.squaredNorm();
+        const CellSurface& surface = map.Surface(static_cast<std::size_t>(nearest));
+        const float planarity = surface.Planarity();
+        if (planarity >= static_cast<float>(options_.min_planarity)) {
+          const double along_normal =
+              (surface.normal_x * e.x() + surface.normal_y * e.y()) / planarity;
+          e2 = along_normal * along_normal;
+        } else {
+          e2 = e.squaredNorm();
+        }
         matched += e.squaredNorm() <= max_corr2 ? 1 : 0;
       } else {
         const double d = field.Interpolate(p, nullptr);

@@ -1,16 +1,18 @@
 // Scan-to-local-map matcher of the front end (DESIGN.md §1.2). The paper uses Censi's PL-ICP
 // (paper reconstruction §6) against a key-frame scan; here each scan is matched against the
-// rolling local map built from the previous scans, by Gauss-Newton on point-to-line residuals
-// whose correspondences come, in O(1), from the exact distance transform of the map's obstacle
-// cells (the nearest obstacle cell of the cell a point falls in: its mean hit point and surface
-// normal; matching_field.hpp). A "distance_field" residual (bilinear distance to the nearest
-// obstacle) is available for comparison. The iterations are robust (Cauchy weights, shrinking
-// scale over stages, i.e. coarse to fine), start from the odometry prediction and keep a weak
-// motion-model prior, which matters only where the scan leaves a direction unconstrained (long
-// corridors). When the refined prior explains the scan poorly, a correlative search (Olson 2009,
-// brute force over a coarse x-y-yaw lattice on a Gaussian score of the distance field) proposes
-// another start, and the better of the two refinements wins. The covariance is the inverse of the
-// Gauss-Newton Hessian (points with standard deviation point_sigma, plus the prior).
+// rolling local map built from the previous scans, by Gauss-Newton on the map's own exact distance
+// transform (matching_field.hpp): the residual of a point is the bilinearly interpolated distance
+// to the nearest obstacle cell, its gradient restricted to the point's scan normal on clean
+// surfaces. A "point_to_line" residual (to the nearest obstacle cell's mean hit point, along its
+// mean normal, correspondences in O(1) from the transform's labels) is available; it is more
+// precise per scan but lets the map follow the robot's errors (docs/front_end.md). The iterations
+// are robust (Cauchy weights, shrinking scale over stages, i.e. coarse to fine; damped when they
+// oscillate across the field's kinks), start from the odometry prediction and keep a motion-model
+// prior, which matters only where the scan leaves a direction unconstrained (long corridors). When
+// the refined prior explains the scan poorly, a correlative search (Olson 2009, brute force over a
+// coarse x-y-yaw lattice on a Gaussian score of the distance field) proposes another start, and the
+// better of the two refinements wins. The covariance is the inverse of the Gauss-Newton Hessian
+// (points with standard deviation point_sigma, plus the prior).
 #pragma once
 
 #include <Eigen/Core>
