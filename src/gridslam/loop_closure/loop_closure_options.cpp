@@ -19,6 +19,8 @@ Status LoopClosureOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(appearance_every >= 0, "loop_closure.appearance_every >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(appearance_candidates >= 0, "loop_closure.appearance_candidates >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(appearance_spacing >= 0.0, "loop_closure.appearance_spacing >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(prune_chi2 > 0.0, "loop_closure.prune_chi2 > 0"));
   return refinement.Validate();
 }

@@ -46,6 +46,9 @@ struct LoopClosureOptions {
   int appearance_every = 2;
   /// Key maps voted for by the appearance search that are aligned [-].
   int appearance_candidates = 3;
+  /// Key maps enter a robot's appearance index at least this far apart along its path (key maps
+  /// overlap by most of their area; near-duplicates would crowd out the vote) [m].
+  double appearance_spacing = 3.0;
   /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
   double prune_chi2 = 25.0;
   /// When feature alignment of a prior-based candidate fails and the uncertainty distance is
@@ -85,6 +88,8 @@ struct LoopClosureOptions {
     v("appearance_every", appearance_every,
       "Run the global appearance search for every n-th key map (0 = never) [-]");
     v("appearance_candidates", appearance_candidates, "Best-voted key maps aligned [-]");
+    v("appearance_spacing", appearance_spacing,
+      "Path distance between key maps put into a robot's appearance index [m]");
     v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
     v("prior_refinement", prior_refinement,
       "Fall back to refining the predicted transform when feature alignment fails");

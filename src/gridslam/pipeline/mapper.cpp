@@ -13,6 +13,8 @@ Mapper::Impl::Impl(const SlamOptions& slam_options, int num_robots)
   for (int r = 0; r < num_robots; ++r) {
     robots[static_cast<std::size_t>(r)].front_end =
         std::make_unique<scan_matching::FrontEnd>(options.front_end);
+    robots[static_cast<std::size_t>(r)].appearance =
+        std::make_unique<loop_closure::AppearanceIndex>();
     robot_parent.push_back(r);
   }
   sgd = std::make_unique<pose_graph::SgdOptimizer>(options.optimizer.sgd);
@@ -126,7 +128,12 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
       changed = SearchAppearance(id) || changed;
     }
     stats.seconds_alignment += SecondsSince(start);
-    appearance.Add(id, nodes.back().description.features.descriptors);
+    // Spaced along the path: a place seen by dozens of overlapping key maps would otherwise fill
+    // the k nearest neighbours of a query with near-duplicates and defeat the index's vote.
+    if (state.travel - state.appearance_travel >= options.loop_closure.appearance_spacing) {
+      state.appearance->Add(id, nodes.back().description.features.descriptors);
+      state.appearance_travel = state.travel;
+    }
   }
   if (changed) {
     Iterate(options.graph.online_iterations);

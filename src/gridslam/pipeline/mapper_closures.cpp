@@ -1,5 +1,5 @@
 // Loop closures of the Mapper (DESIGN.md §1.6): prior-based candidates gated by the current
-// estimate, and the global appearance search that joins robots' graphs.
+// estimate (the appearance search across robots and their joins are in mapper_join.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -196,84 +196,6 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
                    std::abs(error.theta()) > options.graph.online_trigger_theta;
   }
   return accepted_any;
-}
-
-
-bool Mapper::Impl::SearchAppearance(int k) {
-  const loop_closure::LoopClosureOptions& lc = options.loop_closure;
-  const Node& current = nodes[static_cast<std::size_t>(k)];
-  const int component = FindComponent(current.robot);
-  ++stats.appearance_queries;
-  const auto votes = appearance.Query(
-      current.description.features.descriptors, lc.appearance_candidates, /*min_votes=*/5,
-      [&](int node) { return FindComponent(nodes[static_cast<std::size_t>(node)].robot) != component; });
-  for (const loop_closure::AppearanceVote& vote : votes) {
-    ++stats.appearance_candidates;
-    const std::optional<Pose2> measured = TryAlign(vote.node, k, nullptr);
-    if (!measured.has_value()) {
-      continue;
-    }
-    closures.push_back({vote.node, k, *measured, "pending", true});
-    const PendingJoin match{vote.node, k, *measured};
-    const int other = FindComponent(nodes[static_cast<std::size_t>(vote.node)].robot);
-    std::vector<PendingJoin> consistent = {match};
-    for (const PendingJoin& p : pending) {
-      if (p.k == k || FindComponent(nodes[static_cast<std::size_t>(p.i)].robot) != other ||
-          FindComponent(nodes[static_cast<std::size_t>(p.k)].robot) != component) {
-        continue;
-      }
-      if (Consistent(match, p, nodes, lc.pairwise_xy, lc.pairwise_theta)) {
-        consistent.push_back(p);
-      }
-    }
-    pending.push_back(match);
-    if (static_cast<int>(consistent.size()) >= lc.min_join_matches) {
-      Join(k, consistent);
-      return true;
-    }
-  }
-  return false;
-}
-
-void Mapper::Impl::Join(int k, const std::vector<PendingJoin>& matches) {
-  const PendingJoin& anchor = matches.front();
-  const int robot_a = nodes[static_cast<std::size_t>(anchor.i)].robot;
-  const int robot_b = nodes[static_cast<std::size_t>(anchor.k)].robot;
-  const int component_a = FindComponent(robot_a);
-  const int component_b = FindComponent(robot_b);
-  // Move component b into a's frame so that anchor.k lands at X_i * T_i_k.
-  const Pose2 T_a_b = nodes[static_cast<std::size_t>(anchor.i)].estimate * anchor.T_i_k *
-                      nodes[static_cast<std::size_t>(anchor.k)].estimate.Inverse();
-  for (Node& node : nodes) {
-    if (FindComponent(node.robot) == component_b) {
-      node.estimate = T_a_b * node.estimate;
-    }
-  }
-  robot_parent[static_cast<std::size_t>(component_b)] = component_a;
-  for (const PendingJoin& m : matches) {
-    EdgeRecord edge;
-    edge.from = m.i;
-    edge.to = m.k;
-    edge.T_from_to = m.T_i_k;
-    edge.information = Information(options.loop_closure.sigma_xy, options.loop_closure.sigma_theta);
-    edge.loop = true;
-    edge.closure = static_cast<int>(closures.size());
-    closures.push_back({m.i, m.k, m.T_i_k, "joined", true});
-    edges.push_back(edge);
-    uncertainty.AddEdge(m.i, m.k, options.graph.loop_uncertainty);
-    ++stats.accepted;
-  }
-  // Joined components: drop pending matches that are now inside one component.
-  pending.erase(std::remove_if(pending.begin(), pending.end(),
-                               [&](const PendingJoin& p) {
-                                 return FindComponent(nodes[static_cast<std::size_t>(p.i)].robot) ==
-                                        FindComponent(nodes[static_cast<std::size_t>(p.k)].robot);
-                               }),
-                pending.end());
-  joins.push_back({robot_a, robot_b, now, anchor.i, anchor.k, static_cast<int>(matches.size())});
-  ++stats.joins;
-  (void)k;
-  RebuildOptimizer();
 }
 
 }  // namespace gridslam::pipeline

@@ -59,6 +59,10 @@ struct FusionScan {
 
 struct RobotState {
   std::unique_ptr<scan_matching::FrontEnd> front_end;
+  /// The robot's key maps for the other robots' appearance search (mapper_join.cpp): one index
+  /// per robot, so a query's nearest neighbours are not its own robot's near-duplicates.
+  std::unique_ptr<loop_closure::AppearanceIndex> appearance;
+  double appearance_travel = -1e300;  ///< Path length at the last key map in `appearance`.
   std::vector<ScanRecord> scans;
   std::size_t unassigned = 0;  ///< First scan not yet given to a key map.
   std::vector<FusionScan> fusion_scans;
@@ -99,8 +103,16 @@ struct Mapper::Impl {
                                        const matching::VerificationInput& verification);
   /// True when an accepted closure calls for online optimization.
   bool SearchPriorCandidates(int k);
+
+  // mapper_join.cpp
   bool SearchAppearance(int k);
+  bool AcceptAcrossRobots(int i, int k, const Pose2& T_i_k, std::vector<double>& distance);
   void Join(int k, const std::vector<PendingJoin>& matches);
+  /// After a join: aligns each key map of the moved robots (`moved`, by robot) with the nearest
+  /// key maps of the others; keeps the matches that agree with min_join_matches others.
+  void CatchUp(const std::vector<bool>& moved, std::vector<PendingJoin> trusted);
+  /// Full optimization of the current graph (options.optimizer), then SGD restarts from it.
+  void OptimizeNow();
 
   // mapper_finish.cpp
   MapperResult Finish();
@@ -116,9 +128,11 @@ struct Mapper::Impl {
   std::vector<ClosureRecord> closures;
   std::vector<JoinRecord> joins;
   std::vector<PendingJoin> pending;
+  /// Verified appearance matches between robots of one map that disagree with the estimate,
+  /// awaiting independent matches that agree with them (mapper_join.cpp).
+  std::vector<PendingJoin> across;
   std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
   loop_closure::UncertaintyGraph uncertainty;
-  loop_closure::AppearanceIndex appearance;
   std::unique_ptr<pose_graph::SgdOptimizer> sgd;
   MapperStats stats;
   Time now;
