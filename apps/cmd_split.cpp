@@ -1,11 +1,12 @@
 // `gridslam split LOG -n N [--relations FILE] [--overlap S] [--by scans|time] [--max-offset M]
 // --seed S -o DIR` (issue 8; DESIGN.md §2): one log becomes N robots with unknown relative starts.
 // DIR receives robot_<i>.clf (piece i in its own, randomly placed odometry frame, as ODOM +
-// ROBOTLASER1 lines; printed timestamps unchanged), index.txt (`timestamp robot`: every scan with its home robot, in time
-// order) and split.json (the pieces, their scans and the transforms T_new_old, i.e. the answer);
-// with --relations also within.relations, between.relations and robot_<i>.relations (the
-// relations by the home robots of their timestamps; docs/multi_robot.md). Every input is checked
-// before anything is written: bad input exits 2 with file:line and leaves DIR untouched.
+// ROBOTLASER1 lines; printed timestamps unchanged), index.txt (`timestamp robot`: every scan with
+// its home robot, in time order) and split.json (the pieces, their scans and the transforms
+// T_new_old, i.e. the answer); with --relations also within.relations, between.relations and
+// robot_<i>.relations (the relations by the home robots of their timestamps; docs/multi_robot.md).
+// Every input is checked before anything is written: bad input exits 2 with file:line and leaves
+// DIR untouched.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -107,7 +108,8 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
     split = multi_robot::SplitRelations(*relations, multi_robot::RobotIndex(home), args.pieces,
                                         tolerance);
     if (split->within.size() + split->between.size() == 0) {
-      return ReportError(InvalidInput("no relation has both timestamps in the log", args.relations));
+      return ReportError(
+          InvalidInput("no relation has both timestamps in the log", args.relations));
     }
     if (split->unmatched > 0) {
       std::fprintf(stderr,
@@ -139,8 +141,8 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
                                 std::to_string(args.pieces) + " of " + args.log + ", seed " +
                                 std::to_string(args.seed) +
                                 "; odometry moved by an unknown rigid transform (split.json)";
-    if (const Status s = multi_robot::WritePieceLog(
-            (dir / name).string(), multi_robot::PieceFrames(all, piece), comment);
+    if (const Status s = multi_robot::WritePieceLog((dir / name).string(),
+                                                    multi_robot::PieceFrames(all, piece), comment);
         !s.ok()) {
       return ReportError(s.error());
     }
@@ -177,8 +179,8 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
     return ReportError(s.error());
   }
   std::printf("gridslam split: %zu scans of %s into %d robots (seed %llu, by %s, overlap %.1f s)\n",
-              all.size(), args.log.c_str(), args.pieces,
-              static_cast<unsigned long long>(args.seed), options.by.c_str(), options.overlap);
+              all.size(), args.log.c_str(), args.pieces, static_cast<unsigned long long>(args.seed),
+              options.by.c_str(), options.overlap);
   for (int i = 0; i < args.pieces; ++i) {
     const auto& r = report["robots"][static_cast<std::size_t>(i)];
     std::printf("  robot %d: %zu scans (%zu home), %.1f s\n", i, r["scans"].get<std::size_t>(),
@@ -195,8 +197,7 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
 RunFunction SetupSplit(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<SplitArgs>();
   sub.add_option("LOG", args->log, "CARMEN log (optionally gzip-compressed)")->required();
-  sub.add_option("-n,--pieces", args->pieces, "Number of robots (consecutive pieces)")
-      ->required();
+  sub.add_option("-n,--pieces", args->pieces, "Number of robots (consecutive pieces)")->required();
   sub.add_option("--relations", args->relations,
                  "Benchmark relations of LOG, split into within/between.relations");
   sub.add_option("--overlap", args->overlap,

@@ -2,7 +2,8 @@
 // mapped together by the Mapper, which must join them into one map by itself (appearance search,
 // verified and mutually consistent matches), and the benchmark relations between robots, which
 // only a correct join can satisfy, must score about as well as those within each robot. Two
-// and three simulated robots in the office world, and the start of the intel log cut into two
+// (400 s) and three (the whole tour) simulated robots in the office world, whose repeated rooms
+// and symmetric corridors invite false joins, and the start of the intel log cut into two
 // robots by `gridslam split`'s code (log_split.hpp), written as logs and read back.
 #include <algorithm>
 #include <optional>
@@ -33,8 +34,8 @@ pipeline::MapperResult MapTogether(const std::vector<std::vector<Frame>>& robots
     std::optional<std::size_t> robot;
     for (std::size_t r = 0; r < robots.size(); ++r) {
       if (next[r] < robots[r].size() &&
-          (!robot || robots[r][next[r]].corrected_time <
-                         robots[*robot][next[*robot]].corrected_time)) {
+          (!robot ||
+           robots[r][next[r]].corrected_time < robots[*robot][next[*robot]].corrected_time)) {
         robot = r;
       }
     }
@@ -92,7 +93,7 @@ TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
   const auto [robots, duration] = GetParam();
   simulation::SimulationOptions options;
   options.robots = robots;
-  options.duration = duration;  // enough for every robot to meet another and map together
+  options.duration = duration;  // 0: the whole tour
   options.seed = 3;
   auto world = simulation::MakeBuiltinWorld("office", options.resolution);
   ASSERT_TRUE(world.ok());
@@ -110,7 +111,6 @@ TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
     }
   }
   const pipeline::MapperResult result = MapTogether(logs);
-  for (const auto& j : result.joins) std::printf("DBG join %d-%d at %s vertices %d %d matches %d\n", j.robot_a, j.robot_b, FormatSeconds(j.time).c_str(), j.vertex_a, j.vertex_b, j.matches);
   ExpectOneMap(result);
   const Scores s = Score(result, multi_robot::RobotIndex(index), within, simulated.value().between);
   ASSERT_GT(s.between.used, 20);
@@ -123,7 +123,7 @@ TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Office, SimulatedRobots,
-                         ::testing::Values(std::pair{2, 400.0}, std::pair{3, 350.0}));
+                         ::testing::Values(std::pair{2, 400.0}, std::pair{3, 0.0}));
 
 TEST(SplitRealLog, PiecesOfIntelMergeBackIntoOneMap) {
   GRIDSLAM_REQUIRE_DATA();

@@ -98,6 +98,71 @@ bool WithinLimits(const PairOutcome& o, const AlignEvalOptions& options) {
          o.error_rotation_aligned < DegToRad(options.correct_rotation_deg);
 }
 
+/// Runs the front end again over `frames` (it is deterministic) and describes the key maps
+/// marked in `needed` as they are finished, so only those are kept. Runtime error if the second
+/// run hands out other key maps than `catalog` holds.
+Result<std::vector<std::optional<Described>>> DescribeKeyMaps(
+    std::span<const Frame> frames, const scan_matching::FrontEndOptions& front_end,
+    const KeyMapCatalog& catalog, const std::vector<char>& needed,
+    const description::DescriptionOptions& options) {
+  std::vector<std::optional<Described>> described(catalog.KeyMaps().size());
+  if (std::find(needed.begin(), needed.end(), 1) == needed.end()) {
+    return described;
+  }
+  const description::KeyMapDescriber describer(options);
+  bool deterministic = true;
+  const KeyMapCatalog again =
+      KeyMapCatalog::Build(frames, front_end, [&](keymap::KeyMap&& key_map) {
+        const auto id = static_cast<std::size_t>(key_map.id);
+        if (id >= needed.size() ||
+            !IsApprox(key_map.T_odom_key, catalog.KeyMaps()[id].T_odom_key)) {
+          deterministic = false;
+          return;
+        }
+        if (needed[id] == 0) {
+          return;
+        }
+        const auto start = Clock::now();
+        Described d{describer.Describe(key_map), 0.0};
+        d.seconds = SecondsSince(start);
+        described[id] = std::move(d);
+      });
+  if (!deterministic || again.KeyMaps().size() != catalog.KeyMaps().size()) {
+    return RuntimeError(
+        "align-eval: the front end handed out different key maps on its second run over the "
+        "log (it must be deterministic)");
+  }
+  return described;
+}
+
+/// Features per key map and description time over the described key maps.
+void AddDescriptionStats(const std::vector<std::optional<Described>>& described,
+                         AlignEvalSummary* summary) {
+  std::vector<double> features;
+  double seconds = 0.0;
+  double seconds_distance = 0.0;
+  double seconds_features = 0.0;
+  for (const auto& d : described) {
+    if (d) {
+      features.push_back(d->description.features.size());
+      seconds += d->seconds;
+      seconds_distance += d->description.seconds_distance;
+      seconds_features += d->description.seconds_features;
+    }
+  }
+  summary->described = static_cast<long>(features.size());
+  const auto n = static_cast<double>(features.size());
+  double total = 0.0;
+  for (const double f : features) {
+    total += f;
+  }
+  summary->features_per_keymap = features.empty() ? kNaN : total / n;
+  summary->features_median = Median(features);
+  summary->ms_per_keymap = features.empty() ? kNaN : 1e3 * seconds / n;
+  summary->ms_distance_per_keymap = features.empty() ? kNaN : 1e3 * seconds_distance / n;
+  summary->ms_features_per_keymap = features.empty() ? kNaN : 1e3 * seconds_features / n;
+}
+
 }  // namespace
 
 AlignEvalSummary Summarize(std::span<const PairOutcome> positives,
@@ -183,8 +248,7 @@ Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEva
   report.negative_candidates = negatives.candidates;
   report.negatives_from_ground_truth = negatives.from_ground_truth;
 
-  // Pass 2: the same front end again (deterministic); the key maps of the pairs are described as
-  // they are finished, so only those are kept.
+  // Pass 2: the key maps of the pairs, described.
   std::vector<char> needed(catalog.KeyMaps().size(), 0);
   const std::vector<TestPair>& positive_pairs = positives.pairs;
   for (const std::vector<TestPair>* pairs : {&positive_pairs, &negatives.pairs}) {
@@ -193,32 +257,9 @@ Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEva
       needed[static_cast<std::size_t>(pair.key_b)] = 1;
     }
   }
-  const description::KeyMapDescriber describer(config.description);
-  std::vector<std::optional<Described>> described(catalog.KeyMaps().size());
-  bool deterministic = true;
-  if (std::find(needed.begin(), needed.end(), 1) != needed.end()) {
-    const KeyMapCatalog again =
-        KeyMapCatalog::Build(input.frames, front_end, [&](keymap::KeyMap&& key_map) {
-          const auto id = static_cast<std::size_t>(key_map.id);
-          if (id >= needed.size() ||
-              !IsApprox(key_map.T_odom_key, catalog.KeyMaps()[id].T_odom_key)) {
-            deterministic = false;
-            return;
-          }
-          if (needed[id] == 0) {
-            return;
-          }
-          const auto start = Clock::now();
-          Described d{describer.Describe(key_map), 0.0};
-          d.seconds = SecondsSince(start);
-          described[id] = std::move(d);
-        });
-    deterministic = deterministic && again.KeyMaps().size() == catalog.KeyMaps().size();
-  }
-  if (!deterministic) {
-    return RuntimeError(
-        "align-eval: the front end handed out different key maps on its second run over the "
-        "log (it must be deterministic)");
+  auto described = DescribeKeyMaps(input.frames, front_end, catalog, needed, config.description);
+  if (!described.ok()) {
+    return described.error();
   }
 
   // Alignment of every pair from the precomputed descriptions.
@@ -226,8 +267,9 @@ Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEva
     std::vector<PairOutcome> outcomes;
     outcomes.reserve(pairs.size());
     for (const TestPair& pair : pairs) {
-      outcomes.push_back(AlignPair(pair, positive, *described[static_cast<std::size_t>(pair.key_a)],
-                                   *described[static_cast<std::size_t>(pair.key_b)], config));
+      outcomes.push_back(
+          AlignPair(pair, positive, *described.value()[static_cast<std::size_t>(pair.key_a)],
+                    *described.value()[static_cast<std::size_t>(pair.key_b)], config));
     }
     return outcomes;
   };
@@ -241,34 +283,7 @@ Result<AlignEvalReport> RunAlignEval(const AlignEvalInput& input, const AlignEva
   summary.correct_aligned = std::count_if(
       report.positives.begin(), report.positives.end(),
       [&](const PairOutcome& o) { return o.accepted && WithinLimits(o, config.eval); });
-  std::vector<double> features;
-  double seconds = 0.0;
-  double seconds_distance = 0.0;
-  double seconds_features = 0.0;
-  for (const auto& d : described) {
-    if (d) {
-      features.push_back(d->description.features.size());
-      seconds += d->seconds;
-      seconds_distance += d->description.seconds_distance;
-      seconds_features += d->description.seconds_features;
-    }
-  }
-  summary.described = static_cast<long>(features.size());
-  if (!features.empty()) {
-    const auto n = static_cast<double>(features.size());
-    double total = 0.0;
-    for (const double f : features) {
-      total += f;
-    }
-    summary.features_per_keymap = total / n;
-    summary.features_median = Median(features);
-    summary.ms_per_keymap = 1e3 * seconds / n;
-    summary.ms_distance_per_keymap = 1e3 * seconds_distance / n;
-    summary.ms_features_per_keymap = 1e3 * seconds_features / n;
-  } else {
-    summary.features_per_keymap = summary.features_median = kNaN;
-    summary.ms_per_keymap = summary.ms_distance_per_keymap = summary.ms_features_per_keymap = kNaN;
-  }
+  AddDescriptionStats(described.value(), &summary);
   return report;
 }
 

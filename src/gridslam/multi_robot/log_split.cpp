@@ -92,8 +92,8 @@ Result<SplitPlan> PlanSplit(const std::vector<Frame>& frames, int num_pieces, st
            ToSeconds(start - frames[piece.begin - 1].corrected_time) <= options.overlap) {
       --piece.begin;
     }
-    piece.T_new_old = RandomStart(seed, i, options.max_translation) *
-                      frames[piece.begin].T_odom_base.Inverse();
+    piece.T_new_old =
+        RandomStart(seed, i, options.max_translation) * frames[piece.begin].T_odom_base.Inverse();
     for (std::size_t k = piece.core_begin; k < piece.core_end; ++k) {
       plan.home[k] = i;
     }

@@ -29,7 +29,8 @@ std::vector<Frame> MakeLog(int n) {
     frame.scan.angle_increment = 0.017453;
     frame.scan.range_max = 30.0;
     for (int b = 0; b < 181; ++b) {
-      frame.scan.ranges.push_back(static_cast<float>(std::round(100.0 * (2.0 + std::sin(0.1 * b + 0.01 * k))) / 100.0));
+      frame.scan.ranges.push_back(
+          static_cast<float>(std::round(100.0 * (2.0 + std::sin(0.1 * b + 0.01 * k))) / 100.0));
     }
     frames.push_back(frame);
     odom = odom * Pose2(0.1, 0.0, 0.02 * std::sin(0.05 * k));
@@ -57,8 +58,8 @@ TEST(LogSplit, PiecesPartitionTheLogByScans) {
     }
     // The piece's first odometry pose is its random start.
     const std::vector<Frame> piece = PieceFrames(frames, pieces[i]);
-    EXPECT_TRUE(IsApprox(piece.front().T_odom_base, RandomStart(7, static_cast<int>(i), 50.0),
-                         1e-9, 1e-9));
+    EXPECT_TRUE(
+        IsApprox(piece.front().T_odom_base, RandomStart(7, static_cast<int>(i), 50.0), 1e-9, 1e-9));
   }
 }
 
@@ -73,13 +74,12 @@ TEST(LogSplit, OverlapReachesBackIntoThePreviousPiece) {
   EXPECT_LT(second.begin, 50U);
   EXPECT_GE(second.begin, 39U);
   for (std::size_t k = second.begin; k < second.core_begin; ++k) {
-    EXPECT_LE(ToSeconds(frames[second.core_begin].corrected_time - frames[k].corrected_time),
-              2.0);
+    EXPECT_LE(ToSeconds(frames[second.core_begin].corrected_time - frames[k].corrected_time), 2.0);
     EXPECT_EQ(plan.value().home[k], 0);  // the overlap's scans stay at home in piece 0
   }
-  EXPECT_GT(ToSeconds(frames[second.core_begin].corrected_time -
-                      frames[second.begin - 1].corrected_time),
-            2.0);
+  EXPECT_GT(
+      ToSeconds(frames[second.core_begin].corrected_time - frames[second.begin - 1].corrected_time),
+      2.0);
   EXPECT_EQ(plan.value().pieces[0].begin, 0U);
   EXPECT_EQ(plan.value().pieces[0].end, 50U);
 }

@@ -31,9 +31,9 @@ class RobotIndex {
 
 /// What CombineTrajectories found.
 struct CombineStats {
-  long poses = 0;          ///< Poses in the combined trajectory.
-  long dropped = 0;        ///< Poses left out because the index gives their time to another robot.
-  long shared_times = 0;   ///< Times held by several trajectories (kept from the first, no index).
+  long poses = 0;         ///< Poses in the combined trajectory.
+  long dropped = 0;       ///< Poses left out because the index gives their time to another robot.
+  long shared_times = 0;  ///< Times held by several trajectories (kept from the first, no index).
 };
 
 /// One trajectory holding, for every scan time, the pose of the robot it belongs to, so that the

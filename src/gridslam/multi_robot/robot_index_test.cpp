@@ -56,7 +56,8 @@ TEST(CombineTrajectories, ScoresRelationsWithinAndBetweenRobots) {
 
   eval::EvalOptions options;
   // Both robots in one correct frame: every relation scores zero.
-  const auto exact = eval::EvaluateRelations(split.between, CombineTrajectories({a, b}, index, kTolerance), options);
+  const auto exact = eval::EvaluateRelations(
+      split.between, CombineTrajectories({a, b}, index, kTolerance), options);
   EXPECT_EQ(exact.used, 3);
   EXPECT_NEAR(exact.translation.mean, 0.0, 1e-9);
   // Robot 1 misplaced by a rigid transform: within-robot relations still score zero, relations
@@ -99,9 +100,10 @@ TEST(CombineTrajectories, SharedTimesGoToTheIndexedOrFirstRobot) {
 
 TEST(SplitRelations, UnknownTimestampsAreCountedNotGuessed) {
   const RobotIndex index({{At(0), 0}, {At(1), 0}, {At(2), 1}});
-  const std::vector<eval::Relation> relations = {
-      {At(0), At(1), Pose2()}, {At(1), At(2), Pose2()}, {At(2), At(7), Pose2()},
-      {At(2), At(2.0004), Pose2()}};
+  const std::vector<eval::Relation> relations = {{At(0), At(1), Pose2()},
+                                                 {At(1), At(2), Pose2()},
+                                                 {At(2), At(7), Pose2()},
+                                                 {At(2), At(2.0004), Pose2()}};
   const RelationSplit split = SplitRelations(relations, index, 3, kTolerance);
   EXPECT_EQ(split.within.size(), 2U);
   EXPECT_EQ(split.between.size(), 1U);

@@ -50,7 +50,8 @@ TEST_P(RealLogSplit, PiecesReadBackAsTheOriginalAndRelationsArePartitioned) {
   }
   EXPECT_GT(compared, frames.value().size());  // the overlaps were compared twice
 
-  auto relations = io::ReadRelations((testing::DataDir() / "relations" / (name + ".relations")).string());
+  auto relations =
+      io::ReadRelations((testing::DataDir() / "relations" / (name + ".relations")).string());
   ASSERT_TRUE(relations.ok());
   std::vector<std::pair<Time, int>> home;
   for (std::size_t k = 0; k < frames.value().size(); ++k) {

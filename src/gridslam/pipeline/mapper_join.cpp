@@ -47,6 +47,13 @@ bool PairConsistent(const PendingJoin& a, const PendingJoin& b, const std::vecto
          std::abs(loop.theta()) < lc.pairwise_theta + lc.gate_theta_per_m * span;
 }
 
+/// Independent evidence: the matched key maps of `a` and `b` lie apart along both paths (an
+/// aliased place matches a run of neighbouring key maps, all consistently).
+bool Independent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes) {
+  return std::abs(At(nodes, a.i).travel - At(nodes, b.i).travel) >= kIndependentTravel &&
+         std::abs(At(nodes, a.k).travel - At(nodes, b.k).travel) >= kIndependentTravel;
+}
+
 /// `stored` oriented from the group of `from` to the group of `to` (group = robot or
 /// component, given by `group`), or nullopt if it links other groups.
 template <class Group>
@@ -98,8 +105,8 @@ bool Mapper::Impl::SearchAppearance(int k) {
       for (const PendingJoin& stored : pending) {
         // A match found from the other side (the other robot's query) counts reversed.
         const std::optional<PendingJoin> p = Oriented(stored, other, component, component_of);
-        // Independent evidence: another key map of this robot.
-        if (p.has_value() && p->k != k && PairConsistent(match, *p, nodes, lc)) {
+        if (p.has_value() && Independent(match, *p, nodes) &&
+            PairConsistent(match, *p, nodes, lc)) {
           consistent.push_back(*p);
         }
       }
@@ -139,7 +146,8 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
     return error.translation().norm() > options.graph.online_trigger_xy ||
            std::abs(error.theta()) > options.graph.online_trigger_theta;
   }
-  if (error.translation().norm() > kMaxCorrection || std::abs(error.theta()) > kMaxCorrectionTheta) {
+  if (error.translation().norm() > kMaxCorrection ||
+      std::abs(error.theta()) > kMaxCorrectionTheta) {
     return false;
   }
   // The estimate disagrees: accept only with independent matches between the same two robots
@@ -149,10 +157,7 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
   std::vector<std::size_t> support;
   for (std::size_t s = 0; s < across.size(); ++s) {
     const std::optional<PendingJoin> p = Oriented(across[s], robot_of(i), robot_of(k), robot_of);
-    if (p.has_value() &&
-        std::abs(At(nodes, p->k).travel - At(nodes, k).travel) >= kIndependentTravel &&
-        std::abs(At(nodes, p->i).travel - At(nodes, i).travel) >= kIndependentTravel &&
-        PairConsistent(match, *p, nodes, lc)) {
+    if (p.has_value() && Independent(match, *p, nodes) && PairConsistent(match, *p, nodes, lc)) {
       support.push_back(s);
     }
   }
@@ -282,7 +287,7 @@ void Mapper::Impl::CatchUp(const std::vector<bool>& moved, std::vector<PendingJo
     std::vector<PendingJoin> accepted;
     for (const PendingJoin& f : found) {
       const auto support = std::count_if(pool.begin(), pool.end(), [&](const PendingJoin& p) {
-        return p.k != f.k && PairConsistent(f, p, nodes, lc);
+        return Independent(f, p, nodes) && PairConsistent(f, p, nodes, lc);
       });
       if (support < lc.min_join_matches) {
         continue;
