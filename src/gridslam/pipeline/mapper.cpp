@@ -124,7 +124,7 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
     start = std::chrono::steady_clock::now();
     changed = SearchPriorCandidates(id) || changed;
     const int every = options.loop_closure.appearance_every;
-    if (every > 0 && robots.size() > 1 && state.num_nodes % every == 0) {
+    if (every > 0 && state.num_nodes % every == 0) {
       changed = SearchAppearance(id) || changed;
     }
     stats.seconds_alignment += SecondsSince(start);

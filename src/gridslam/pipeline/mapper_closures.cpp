@@ -120,6 +120,7 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
       chosen.push_back(c.node);
     }
   }
+  prior_tried = chosen;
   bool accepted_any = false;
   for (const int i : chosen) {
     ++stats.candidates;

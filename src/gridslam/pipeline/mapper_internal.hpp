@@ -132,6 +132,7 @@ struct Mapper::Impl {
   /// awaiting independent matches that agree with them (mapper_join.cpp).
   std::vector<PendingJoin> across;
   std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
+  std::vector<int> prior_tried;    ///< Key maps the last prior-based search aligned.
   loop_closure::UncertaintyGraph uncertainty;
   std::unique_ptr<pose_graph::SgdOptimizer> sgd;
   MapperStats stats;

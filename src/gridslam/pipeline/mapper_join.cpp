@@ -1,10 +1,12 @@
-// Several robots in the Mapper (DESIGN.md §1.6, §1.9; issue 8): the global appearance search of
-// a new key map in the other robots' key maps (each robot has its own index, mapper.cpp), the
+// The global appearance search of the Mapper (DESIGN.md §1.6, §1.9; issues 7, 8): a new key map
+// is looked up in every robot's key maps, its own robot's included (each robot has its own index,
+// mapper.cpp), with no prior: a robot whose drift outgrew the prior-based candidate search still
+// closes its loop, and robots with unknown relative starts find each other. Then the
 // join of two robots' graphs once min_join_matches mutually consistent verified matches exist
 // (before that each graph is anchored on its own: Howard et al. 2006's manifold, where the
 // shared places simply exist twice), a catch-up search that links the key maps the two robots
-// built before they met, and, after the join, appearance matches between the
-// robots of one map, which keep their maps tied together where the estimate has drifted too far
+// built before they met, and appearance matches within one map (one robot's or joined robots'),
+// which keep their maps tied together where the estimate has drifted too far
 // for the prior-based candidates of mapper_closures.cpp: a match that agrees with the estimate
 // is a loop edge at once, one that does not waits for independent matches that agree with it.
 #include <algorithm>
@@ -20,8 +22,11 @@ namespace {
 /// Matches count as independent when their key maps are this far apart along both robots'
 /// paths (an aliased place matches a run of neighbouring key maps, all consistently) [m].
 constexpr double kIndependentTravel = 2.0;
-/// Matches between robots of one map that move it by more than this are aliased places [m, rad].
+/// Matches within one map that move it by more than this, or by more than kMaxDrift times the
+/// uncertainty distance between the matched key maps (a drift of 5 % of the path between them),
+/// are aliased places [m, rad, -].
 constexpr double kMaxCorrection = 10.0;
+constexpr double kMaxDrift = 0.05;
 constexpr double kMaxCorrectionTheta = 0.5;
 /// The gate of appearance matches in one map grows with the uncertainty distance only up to
 /// this: unlike the prior-based candidates, they were not preselected by proximity [m].
@@ -79,15 +84,25 @@ bool Mapper::Impl::SearchAppearance(int k) {
   ++stats.appearance_queries;
   std::vector<double> distance;  // uncertainty distances from k, computed when first needed
   bool changed = false;
-  // Every other robot is searched in its own index: the query's nearest neighbours are that
-  // robot's key maps, not near-duplicates from the query's own robot.
+  // Every robot is searched in its own index: the query's nearest neighbours are that robot's
+  // key maps, not near-duplicates from another one. In the query's own robot, the key maps just
+  // behind it (min_travel_gap) and the prior-based candidates already tried are left out.
+  const auto allowed_in = [&](std::size_t r) {
+    return [&, r](int id) {
+      if (static_cast<int>(r) != current.robot) {
+        return true;
+      }
+      return current.travel - At(nodes, id).travel >= lc.min_travel_gap &&
+             std::find(prior_tried.begin(), prior_tried.end(), id) == prior_tried.end();
+    };
+  };
   for (std::size_t r = 0; r < robots.size(); ++r) {
-    if (static_cast<int>(r) == current.robot || robots[r].num_nodes == 0) {
+    if (robots[r].num_nodes == 0) {
       continue;
     }
     const auto votes = robots[r].appearance->Query(current.description.features.descriptors,
                                                    lc.appearance_candidates, /*min_votes=*/5,
-                                                   [](int) { return true; });
+                                                   allowed_in(r));
     for (const loop_closure::AppearanceVote& vote : votes) {
       ++stats.appearance_candidates;
       const std::optional<Pose2> measured = TryAlign(vote.node, k, nullptr);
@@ -146,7 +161,9 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
     return error.translation().norm() > options.graph.online_trigger_xy ||
            std::abs(error.theta()) > options.graph.online_trigger_theta;
   }
-  if (error.translation().norm() > kMaxCorrection ||
+  const double max_correction =
+      std::max(kMaxCorrection, kMaxDrift * distance[static_cast<std::size_t>(i)]);
+  if (error.translation().norm() > max_correction ||
       std::abs(error.theta()) > kMaxCorrectionTheta) {
     return false;
   }
