@@ -49,6 +49,21 @@ struct LoopClosureOptions {
   /// Key maps enter a robot's appearance index at least this far apart along its path (key maps
   /// overlap by most of their area; near-duplicates would crowd out the vote) [m].
   double appearance_spacing = 3.0;
+  /// Appearance matches (no prior) count as independent evidence of each other when their key
+  /// maps lie at least this far apart along both paths: an aliased place matches a run of
+  /// neighbouring key maps, all consistently [m].
+  double independent_travel = 2.0;
+  /// An appearance match within one map that disagrees with the estimate is refused as aliasing
+  /// when it would move the map by more than max(max_correction, max_drift * the uncertainty
+  /// distance between the key maps) [m], [-], or turn it by more than max_correction_theta [rad].
+  double max_correction = 10.0;
+  double max_drift = 0.05;
+  double max_correction_theta = 0.5;
+  /// The gate of appearance matches grows with the uncertainty distance only up to this: unlike
+  /// prior-based candidates they were not preselected by proximity [m].
+  double appearance_gate_max_uncertainty = 10.0;
+  /// Rounds of the catch-up search after two robots' graphs are joined [-].
+  int catch_up_rounds = 2;
   /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
   double prune_chi2 = 25.0;
   /// When feature alignment of a prior-based candidate fails and the uncertainty distance is
@@ -65,7 +80,8 @@ struct LoopClosureOptions {
   template <class V>
   void Visit(V& v) {
     v("enabled", enabled, "Search for loop closures");
-    v("min_travel_gap", min_travel_gap, "Minimum path distance between a key map and a candidate [m]");
+    v("min_travel_gap", min_travel_gap,
+      "Minimum path distance between a key map and a candidate [m]");
     v("search_radius", search_radius, "Candidate search radius around the predicted pose [m]");
     v("search_radius_per_m", search_radius_per_m,
       "Search radius growth per metre of uncertainty distance [m/m]");
@@ -90,6 +106,17 @@ struct LoopClosureOptions {
     v("appearance_candidates", appearance_candidates, "Best-voted key maps aligned [-]");
     v("appearance_spacing", appearance_spacing,
       "Path distance between key maps put into a robot's appearance index [m]");
+    v("independent_travel", independent_travel,
+      "Appearance matches are independent evidence when this far apart along both paths [m]");
+    v("max_correction", max_correction,
+      "Appearance matches moving the map more than max(this, max_drift * uncertainty distance) "
+      "are refused [m]");
+    v("max_drift", max_drift, "... drift per metre of uncertainty distance [-]");
+    v("max_correction_theta", max_correction_theta,
+      "Appearance matches turning the map more than this are refused [rad]");
+    v("appearance_gate_max_uncertainty", appearance_gate_max_uncertainty,
+      "Cap of the uncertainty distance in the gate of appearance matches [m]");
+    v("catch_up_rounds", catch_up_rounds, "Rounds of the catch-up search after a join [-]");
     v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
     v("prior_refinement", prior_refinement,
       "Fall back to refining the predicted transform when feature alignment fails");

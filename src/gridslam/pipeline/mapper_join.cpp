@@ -19,21 +19,6 @@
 namespace gridslam::pipeline {
 namespace {
 
-/// Matches count as independent when their key maps are this far apart along both robots'
-/// paths (an aliased place matches a run of neighbouring key maps, all consistently) [m].
-constexpr double kIndependentTravel = 2.0;
-/// Matches within one map that move it by more than this, or by more than kMaxDrift times the
-/// uncertainty distance between the matched key maps (a drift of 5 % of the path between them),
-/// are aliased places [m, rad, -].
-constexpr double kMaxCorrection = 10.0;
-constexpr double kMaxDrift = 0.05;
-constexpr double kMaxCorrectionTheta = 0.5;
-/// The gate of appearance matches in one map grows with the uncertainty distance only up to
-/// this: unlike the prior-based candidates, they were not preselected by proximity [m].
-constexpr double kMaxGateUncertainty = 10.0;
-/// Rounds of the catch-up search after a join (each followed by an optimization) [-].
-constexpr int kCatchUpRounds = 2;
-
 const Node& At(const std::vector<Node>& nodes, int id) {
   return nodes[static_cast<std::size_t>(id)];
 }
@@ -54,9 +39,10 @@ bool PairConsistent(const PendingJoin& a, const PendingJoin& b, const std::vecto
 
 /// Independent evidence: the matched key maps of `a` and `b` lie apart along both paths (an
 /// aliased place matches a run of neighbouring key maps, all consistently).
-bool Independent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes) {
-  return std::abs(At(nodes, a.i).travel - At(nodes, b.i).travel) >= kIndependentTravel &&
-         std::abs(At(nodes, a.k).travel - At(nodes, b.k).travel) >= kIndependentTravel;
+bool Independent(const PendingJoin& a, const PendingJoin& b, const std::vector<Node>& nodes,
+                 double travel) {
+  return std::abs(At(nodes, a.i).travel - At(nodes, b.i).travel) >= travel &&
+         std::abs(At(nodes, a.k).travel - At(nodes, b.k).travel) >= travel;
 }
 
 /// `stored` oriented from the group of `from` to the group of `to` (group = robot or
@@ -100,9 +86,9 @@ bool Mapper::Impl::SearchAppearance(int k) {
     if (robots[r].num_nodes == 0) {
       continue;
     }
-    const auto votes = robots[r].appearance->Query(current.description.features.descriptors,
-                                                   lc.appearance_candidates, /*min_votes=*/5,
-                                                   allowed_in(r));
+    const auto votes =
+        robots[r].appearance->Query(current.description.features.descriptors,
+                                    lc.appearance_candidates, /*min_votes=*/5, allowed_in(r));
     for (const loop_closure::AppearanceVote& vote : votes) {
       ++stats.appearance_candidates;
       const std::optional<Pose2> measured = TryAlign(vote.node, k, nullptr);
@@ -120,7 +106,7 @@ bool Mapper::Impl::SearchAppearance(int k) {
       for (const PendingJoin& stored : pending) {
         // A match found from the other side (the other robot's query) counts reversed.
         const std::optional<PendingJoin> p = Oriented(stored, other, component, component_of);
-        if (p.has_value() && Independent(match, *p, nodes) &&
+        if (p.has_value() && Independent(match, *p, nodes, lc.independent_travel) &&
             PairConsistent(match, *p, nodes, lc)) {
           consistent.push_back(*p);
         }
@@ -154,7 +140,8 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
     distance = uncertainty.DistancesFrom(k);
   }
   const Pose2 error = Between(Between(At(nodes, i).estimate, At(nodes, k).estimate), T_i_k);
-  const double u = std::min(distance[static_cast<std::size_t>(i)], kMaxGateUncertainty);
+  const double u =
+      std::min(distance[static_cast<std::size_t>(i)], lc.appearance_gate_max_uncertainty);
   if (error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
       std::abs(error.theta()) <= lc.gate_theta + lc.gate_theta_per_m * u) {
     add_edge({i, k, T_i_k});
@@ -162,9 +149,11 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
            std::abs(error.theta()) > options.graph.online_trigger_theta;
   }
   const double max_correction =
-      std::max(kMaxCorrection, kMaxDrift * distance[static_cast<std::size_t>(i)]);
+      std::max(lc.max_correction, lc.max_drift * distance[static_cast<std::size_t>(i)]);
   if (error.translation().norm() > max_correction ||
-      std::abs(error.theta()) > kMaxCorrectionTheta) {
+      std::abs(error.theta()) > lc.max_correction_theta) {
+    GRIDSLAM_LOG_DEBUG("appearance match {}-{} rejected: moves the map {:.2f} m {:.3f} rad", i, k,
+                       error.translation().norm(), error.theta());
     return false;
   }
   // The estimate disagrees: accept only with independent matches between the same two robots
@@ -174,12 +163,15 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
   std::vector<std::size_t> support;
   for (std::size_t s = 0; s < across.size(); ++s) {
     const std::optional<PendingJoin> p = Oriented(across[s], robot_of(i), robot_of(k), robot_of);
-    if (p.has_value() && Independent(match, *p, nodes) && PairConsistent(match, *p, nodes, lc)) {
+    if (p.has_value() && Independent(match, *p, nodes, lc.independent_travel) &&
+        PairConsistent(match, *p, nodes, lc)) {
       support.push_back(s);
     }
   }
   const int needed = std::max(lc.min_join_matches + 1, lc.min_consistent_gated);
   if (static_cast<int>(support.size()) + 1 < needed) {
+    GRIDSLAM_LOG_DEBUG("appearance match {}-{} off by {:.2f} m {:.3f} rad: {} agree, waits", i, k,
+                       error.translation().norm(), error.theta(), support.size());
     across.push_back(match);
     return false;
   }
@@ -262,7 +254,7 @@ void Mapper::Impl::CatchUp(const std::vector<bool>& moved, std::vector<PendingJo
   }
   long aligned = 0;
   int added_total = 0;
-  for (int round = 0; round < kCatchUpRounds; ++round) {
+  for (int round = 0; round < lc.catch_up_rounds; ++round) {
     // Every key map of b not yet linked: the nearest key maps of a under the joined estimate.
     std::vector<PendingJoin> found;
     for (const Node& b : nodes) {
@@ -304,7 +296,7 @@ void Mapper::Impl::CatchUp(const std::vector<bool>& moved, std::vector<PendingJo
     std::vector<PendingJoin> accepted;
     for (const PendingJoin& f : found) {
       const auto support = std::count_if(pool.begin(), pool.end(), [&](const PendingJoin& p) {
-        return Independent(f, p, nodes) && PairConsistent(f, p, nodes, lc);
+        return Independent(f, p, nodes, lc.independent_travel) && PairConsistent(f, p, nodes, lc);
       });
       if (support < lc.min_join_matches) {
         continue;
