@@ -48,6 +48,9 @@ Status FrontEndOptions::Validate() const {
       "front_end odometry sigmas > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(odometry_drift_xy >= 0.0 && odometry_drift_theta >= 0.0,
                                    "front_end odometry drifts >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(adaptive_window > 0 && adaptive_min_scale > 0.0 && adaptive_min_scale <= 1.0,
+              "front_end.adaptive_window > 0, 0 < adaptive_min_scale <= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(max_correction_xy > 0.0 && max_correction_theta > 0.0,
                                    "front_end max corrections > 0"));
   return Status::Ok();
@@ -57,21 +60,30 @@ FrontEnd::FrontEnd(const FrontEndOptions& options)
     : options_(options),
       matcher_(options.matcher),
       field_(options.matcher.max_correspondence_distance),
-      keymaps_(options.keymap) {
+      keymaps_(options.keymap),
+      odometry_noise_(options.adaptive_window, options.adaptive_min_scale) {
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
 }
 
 FrontEnd::~FrontEnd() = default;
 
-Eigen::Matrix3d FrontEnd::PriorInformation(const Pose2& odometry_increment,
-                                           const Pose2& T_odom_base_predicted) const {
+FrontEnd::PriorSigmas FrontEnd::DefaultPriorSigmas(const Pose2& odometry_increment) const {
   // Independent errors along and across the robot's heading, and in yaw, each a floor plus a
-  // part proportional to the motion; rotated into the odometry frame.
+  // part proportional to the motion.
   const double travelled = odometry_increment.translation().norm();
-  const double forward = options_.odometry_sigma_forward + options_.odometry_drift_xy * travelled;
-  const double lateral = options_.odometry_sigma_lateral + options_.odometry_drift_xy * travelled;
-  const double sigma_theta = options_.odometry_sigma_theta +
-                             options_.odometry_drift_theta * std::abs(odometry_increment.theta());
+  return {options_.odometry_sigma_forward + options_.odometry_drift_xy * travelled,
+          options_.odometry_sigma_lateral + options_.odometry_drift_xy * travelled,
+          options_.odometry_sigma_theta +
+              options_.odometry_drift_theta * std::abs(odometry_increment.theta())};
+}
+
+Eigen::Matrix3d FrontEnd::PriorInformation(const PriorSigmas& defaults,
+                                           const Pose2& T_odom_base_predicted) const {
+  // The yaw default scaled to the odometry at hand; rotated into the odometry frame.
+  const double forward = defaults.forward;
+  const double lateral = defaults.lateral;
+  const double sigma_theta =
+      (options_.adaptive_odometry ? odometry_noise_.RotationScale() : 1.0) * defaults.theta;
   const Eigen::Matrix2d R = T_odom_base_predicted.Rotation();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   information.topLeftCorner<2, 2>() =
@@ -106,7 +118,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   } else {
     const Pose2 increment = Between(last_odometry_, frame.T_odom_base);
     const Pose2 predicted = last_estimate_ * increment;
-    const Eigen::Matrix3d prior_information = PriorInformation(increment, predicted);
+    const PriorSigmas defaults = DefaultPriorSigmas(increment);
+    const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted);
     pose = predicted;
     step.covariance = prior_information.inverse();
     if (!options_.match) {
@@ -133,6 +146,7 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
+        odometry_noise_.Add(correction.theta(), defaults.theta);
       } else {
         step.status = FrameStatus::kFallbackRejected;
         ++stats_.fallback_rejected;

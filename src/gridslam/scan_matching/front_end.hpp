@@ -18,6 +18,7 @@
 #include "gridslam/scan/laser_scan.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
+#include "gridslam/scan_matching/odometry_noise.hpp"
 #include "gridslam/scan_matching/scan_matcher.hpp"
 
 namespace gridslam::scan_matching {
@@ -84,7 +85,15 @@ class FrontEnd {
   [[nodiscard]] const FrontEndOptions& Options() const { return options_; }
 
  private:
-  [[nodiscard]] Eigen::Matrix3d PriorInformation(const Pose2& odometry_increment,
+  /// Default standard deviations of the odometry prediction over `odometry_increment`.
+  struct PriorSigmas {
+    double forward = 0.0;  ///< [m]
+    double lateral = 0.0;  ///< [m]
+    double theta = 0.0;    ///< [rad]
+  };
+  [[nodiscard]] PriorSigmas DefaultPriorSigmas(const Pose2& odometry_increment) const;
+  /// The prior's information: the defaults scaled by the odometry noise estimate.
+  [[nodiscard]] Eigen::Matrix3d PriorInformation(const PriorSigmas& defaults,
                                                  const Pose2& T_odom_base_predicted) const;
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
 
@@ -93,6 +102,7 @@ class FrontEnd {
   std::unique_ptr<RollingWindow> window_;
   MatchingField field_;
   keymap::KeyMapBuilder keymaps_;
+  OdometryNoiseEstimate odometry_noise_;
   FrontEndStats stats_;
   Pose2 last_odometry_;     ///< Odometry pose of the previous frame.
   Pose2 last_estimate_;     ///< Estimated pose of the previous frame.

@@ -24,8 +24,14 @@ struct FrontEndOptions {
   double odometry_sigma_theta = 0.05;    ///< [rad]
   double odometry_drift_xy = 0.2;        ///< [m per m travelled]
   double odometry_drift_theta = 0.2;     ///< [rad per rad turned]
-  double max_correction_xy = 0.5;        ///< Larger corrections of the prediction are rejected [m].
-  double max_correction_theta = 0.35;    ///< [rad]
+  /// Scale the yaw prior to the odometry at hand (odometry_noise.hpp): the yaw std above is
+  /// multiplied by the robust RMS of the last `adaptive_window` matches' yaw corrections in units
+  /// of that std, clamped to [adaptive_min_scale, 1]. Translation is not adapted.
+  bool adaptive_odometry = true;
+  int adaptive_window = 200;           ///< [matched scans]
+  double adaptive_min_scale = 0.1;     ///< [-]
+  double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
+  double max_correction_theta = 0.35;  ///< [rad]
 
   template <class V>
   void Visit(V& v) {
@@ -43,6 +49,10 @@ struct FrontEndOptions {
     v("odometry_sigma_theta", odometry_sigma_theta, "Prior: yaw std of a prediction [rad]");
     v("odometry_drift_xy", odometry_drift_xy, "Prior: added position std per metre [m/m]");
     v("odometry_drift_theta", odometry_drift_theta, "Prior: added yaw std per radian [rad/rad]");
+    v("adaptive_odometry", adaptive_odometry,
+      "Scale the yaw prior by the recent agreement of odometry and scan matching");
+    v("adaptive_window", adaptive_window, "... over this many matched scans [-]");
+    v("adaptive_min_scale", adaptive_min_scale, "... never below this fraction of the yaw std [-]");
     v("max_correction_xy", max_correction_xy,
       "Matches moving the prediction farther are rejected (odometry fallback) [m]");
     v("max_correction_theta", max_correction_theta, "... or turning it more [rad]");
