@@ -16,6 +16,8 @@ Status DescriptionOptions::Validate() const {
                                    "description.occupied_probability in (0.5, 1)"));
   GRIDSLAM_RETURN_IF_ERROR(Require(observed_log_odds >= 0.0, "description.observed_log_odds >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_features >= 0, "description.min_features >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(detection_margin >= 0.0, "description.detection_margin >= 0"));
   return surf.Validate();
 }
 

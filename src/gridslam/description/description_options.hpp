@@ -27,6 +27,11 @@ struct DescriptionOptions {
   double observed_log_odds = 0.05;
   /// Key maps with fewer features cannot be aligned (paper: 5) [-].
   int min_features = 5;
+  /// The detection image is extended by this margin on every side, repeating its edge values,
+  /// before detection; keypoints found in the margin are dropped. Without it a detector searches
+  /// only where its filters fit inside the image (SURF's octaves: 0.7 / 1.3 / 2.5 / 4.9 m from the
+  /// edge at 5 cm cells), so structure near the key map's edge is missed at the larger scales [m].
+  double detection_margin = 0.0;
   features::SurfOptions surf;
 
   template <class V>
@@ -41,6 +46,8 @@ struct DescriptionOptions {
     v("occupied_probability", occupied_probability, "Obstacle cells: probability above this [-]");
     v("observed_log_odds", observed_log_odds, "Observed cells: |log-odds| above this [-]");
     v("min_features", min_features, "Key maps with fewer features are not aligned [-]");
+    v("detection_margin", detection_margin,
+      "Detection image extended by this margin (edge values repeated); 0 = none [m]");
     v.Section("surf", surf, "SURF detector and descriptor (Bay et al. 2008)");
   }
   [[nodiscard]] Status Validate() const;

@@ -102,7 +102,27 @@ KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const
                                                                         : images.distance;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  detector_->detect(detect_on, keypoints);
+  // The margin in cells, rounded up to a multiple of SURF's coarsest sampling step so that every
+  // octave samples the same pixels as without a margin (the inner keypoints stay the same).
+  const int coarsest_step = options_.surf.initial_step << (options_.surf.num_octaves - 1);
+  const int margin =
+      static_cast<int>(std::ceil(options_.detection_margin / resolution / coarsest_step - 1e-9)) *
+      coarsest_step;
+  if (margin > 0) {
+    cv::Mat padded;
+    cv::copyMakeBorder(detect_on, padded, margin, margin, margin, margin, cv::BORDER_REPLICATE);
+    detector_->detect(padded, keypoints);
+    const auto shift = static_cast<float>(margin);
+    const auto max_x = static_cast<float>(detect_on.cols - 1);
+    const auto max_y = static_cast<float>(detect_on.rows - 1);
+    std::erase_if(keypoints, [&](cv::KeyPoint& kp) {
+      kp.pt.x -= shift;
+      kp.pt.y -= shift;
+      return !(kp.pt.x >= 0.0F && kp.pt.y >= 0.0F && kp.pt.x <= max_x && kp.pt.y <= max_y);
+    });
+  } else {
+    detector_->detect(detect_on, keypoints);
+  }
   detector_->compute(describe_on, keypoints, descriptors);
 
   matching::FeatureSet& features = description.features;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 #include <random>
 
@@ -98,6 +99,54 @@ TEST(KeyMapDescriber, AlignmentRecoversKnownTransform) {
     EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - expected.theta())), 0.01)
         << angle_deg;
   }
+}
+
+// With a detection margin the detector also searches near the key map's edge, where its larger
+// filters do not fit inside the image; the keypoints it finds far from the edge are kept (the
+// margin is a multiple of the coarsest sampling step, so the sampling grids do not move), and
+// none lies outside the key map.
+TEST(KeyMapDescriber, DetectionMarginAddsFeaturesNearTheEdge) {
+  const keymap::KeyMap key_map = MakeKeyMap(OfficeWalls(), Pose2(3.5, 3.0, 0.3));
+  DescriptionOptions options;
+  const KeyMapDescription without = KeyMapDescriber(options).Describe(key_map);
+  options.detection_margin = 2.5;
+  const KeyMapDescription with = KeyMapDescriber(options).Describe(key_map);
+  ASSERT_GE(without.features.size(), 5);
+  EXPECT_GT(with.features.size(), without.features.size());
+  EXPECT_EQ(with.features.descriptors.rows, with.features.size());
+  const MapLimits& limits = key_map.log_odds.Limits();
+  const auto edge_distance = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d lo = p - limits.Origin();
+    const Eigen::Vector2d hi =
+        limits.Origin() + Eigen::Vector2d(limits.Width(), limits.Height()) * 0.05 - p;
+    return std::min(lo.minCoeff(), hi.minCoeff());
+  };
+  double closest_without = 1e9;
+  for (const auto& p : without.features.points) {
+    closest_without = std::min(closest_without, edge_distance(p));
+  }
+  double closest_with = 1e9;
+  for (const auto& p : with.features.points) {
+    EXPECT_GE(edge_distance(p), 0.0);
+    closest_with = std::min(closest_with, edge_distance(p));
+  }
+  EXPECT_LT(closest_with, closest_without);
+  // Away from the edge (beyond the largest filter's half extent, 4.9 m) nothing changes; nearer,
+  // a sub-sample fit may now move to a sample that had no neighbourhood before.
+  int inner = 0;
+  for (int k = 0; k < without.features.size(); ++k) {
+    const auto& p = without.features.points[static_cast<std::size_t>(k)];
+    if (edge_distance(p) < 5.0) {
+      continue;
+    }
+    ++inner;
+    bool found = false;
+    for (const auto& q : with.features.points) {
+      found = found || (p - q).norm() < 1e-6;
+    }
+    EXPECT_TRUE(found) << "keypoint " << k << " at " << p.transpose() << " lost";
+  }
+  EXPECT_GT(inner, 0);
 }
 
 }  // namespace
