@@ -13,6 +13,8 @@ Status RefinementOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(max_points >= 1, "refinement.max_points >= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_points >= 3, "refinement.min_points >= 3"));
   GRIDSLAM_RETURN_IF_ERROR(Require(max_step > 0.0, "refinement.max_step > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(points == "key_map" || points == "scans", "refinement.points is key_map or scans"));
   return Status::Ok();
 }
 
@@ -85,8 +87,8 @@ RefinementResult RefineOnDistanceField(std::span<const Eigen::Vector2d> points_b
                                        const RefinementOptions& options) {
   RefinementResult result;
   result.T_a_b = T_a_b;
-  const int stride = std::max<int>(
-      1, static_cast<int>(points_b.size()) / std::max(1, options.max_points));
+  const int stride =
+      std::max<int>(1, static_cast<int>(points_b.size()) / std::max(1, options.max_points));
   Pose2 T = T_a_b;
   System s = Linearize(points_b, stride, distance_a, T, options);
   for (int it = 0; it < options.max_iterations; ++it) {
@@ -96,7 +98,8 @@ RefinementResult RefineOnDistanceField(std::span<const Eigen::Vector2d> points_b
     Eigen::Matrix3d H = s.H;
     H.diagonal() += Eigen::Vector3d::Constant(1e-6 * (H.trace() + 1e-9));
     const Eigen::Vector3d delta = -H.ldlt().solve(s.g);
-    // Left update: T <- exp(delta) applied in a's frame (delta = (dx, dy, dtheta) about a's origin).
+    // Left update: T <- exp(delta) applied in a's frame (delta = (dx, dy, dtheta) about a's
+    // origin).
     const Pose2 step(delta.x(), delta.y(), delta.z());
     Pose2 candidate = step * T;
     System next = Linearize(points_b, stride, distance_a, candidate, options);

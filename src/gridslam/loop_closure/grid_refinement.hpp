@@ -8,6 +8,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -18,13 +19,20 @@
 namespace gridslam::loop_closure {
 
 struct RefinementOptions {
-  bool enabled = true;          ///< Refine accepted alignments.
-  int max_iterations = 15;      ///< Gauss-Newton iterations [-].
-  double huber = 0.05;          ///< Huber kernel width [m].
-  double max_distance = 0.3;    ///< Points farther than this from a's obstacles are ignored [m].
-  int max_points = 1500;        ///< Points used at most (regular subsample) [-].
-  int min_points = 50;          ///< Fewer usable points: refinement fails [-].
-  double max_step = 0.5;        ///< Refinement may move the transform at most this far [m].
+  bool enabled = true;        ///< Refine accepted alignments.
+  int max_iterations = 15;    ///< Gauss-Newton iterations [-].
+  double huber = 0.05;        ///< Huber kernel width [m].
+  double max_distance = 0.3;  ///< Points farther than this from a's obstacles are ignored [m].
+  int max_points = 1500;      ///< Points used at most (regular subsample) [-].
+  int min_points = 50;        ///< Fewer usable points: refinement fails [-].
+  double max_step = 0.5;      ///< Refinement may move the transform at most this far [m].
+  /// Which points of b the caller matches to a's distance field: "key_map" (b's obstacle cells,
+  /// the whole window) or "scans" (the returns of the scans b holds, seen from where its
+  /// trajectory poses are; the key map's cells when it holds too few). A key map is distorted by
+  /// the front end's drift across its window, so the transform that fits the whole window is not
+  /// the one that fits the neighbourhood of b's scans, which is what the corrected trajectory
+  /// needs (docs/results.md: intel 0.0203 -> 0.0186 m).
+  std::string points = "scans";
   template <class V>
   void Visit(V& v) {
     v("enabled", enabled, "Refine accepted alignments on the distance field");
@@ -34,17 +42,18 @@ struct RefinementOptions {
     v("max_points", max_points, "Points used at most [-]");
     v("min_points", min_points, "Minimum usable points [-]");
     v("max_step", max_step, "Refinement may move the transform at most this far [m]");
+    v("points", points, "Points of b refined: key_map (obstacle cells) or scans (its returns)");
   }
   [[nodiscard]] Status Validate() const;
 };
 
 struct RefinementResult {
   bool ok = false;
-  Pose2 T_a_b;                                            ///< Refined transform.
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();      ///< J^T W J at the solution, per point.
-  double rms = 0.0;            ///< RMS distance of the used points [m].
+  Pose2 T_a_b;                                        ///< Refined transform.
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  ///< J^T W J at the solution, per point.
+  double rms = 0.0;                                   ///< RMS distance of the used points [m].
   double inlier_fraction = 0.0;  ///< Used points within `huber` of an obstacle [-].
-  int points = 0;              ///< Points used at the solution.
+  int points = 0;                ///< Points used at the solution.
   int iterations = 0;
 };
 

@@ -1,8 +1,8 @@
 #include "gridslam/loop_closure/grid_refinement.hpp"
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 
@@ -54,12 +54,21 @@ TEST(GridRefinement, RecoversSmallOffsetToSubCellAccuracy) {
 }
 
 TEST(GridRefinement, FailsWithoutOverlap) {
-  const Grid2D<float> distance =
-      distance_transform::DistanceTransformMetres(Room());
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(Room());
   const std::vector<Eigen::Vector2d> far = {{100.0, 100.0}, {101.0, 100.0}, {100.0, 101.0}};
   const RefinementResult result =
       RefineOnDistanceField(far, distance, Pose2::Identity(), RefinementOptions{});
   EXPECT_FALSE(result.ok);
+}
+
+TEST(GridRefinement, OptionsNameThePointsToRefine) {
+  RefinementOptions options;
+  EXPECT_EQ(options.points, "scans");
+  EXPECT_TRUE(options.Validate().ok());
+  options.points = "key_map";
+  EXPECT_TRUE(options.Validate().ok());
+  options.points = "cells";
+  EXPECT_FALSE(options.Validate().ok());
 }
 
 }  // namespace

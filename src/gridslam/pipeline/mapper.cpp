@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "gridslam/grid/scan_points.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -33,6 +34,13 @@ Eigen::Matrix3d Mapper::Impl::Information(double sigma_xy, double sigma_theta) c
   return Eigen::Vector3d(1.0 / (sigma_xy * sigma_xy), 1.0 / (sigma_xy * sigma_xy),
                          1.0 / (sigma_theta * sigma_theta))
       .asDiagonal();
+}
+
+std::span<const Eigen::Vector2d> Mapper::Impl::RefinementPoints(const Node& b) const {
+  const auto min_points = static_cast<std::size_t>(options.loop_closure.refinement.min_points);
+  return b.scan_points.size() >= 2 * min_points
+             ? std::span<const Eigen::Vector2d>(b.scan_points)
+             : std::span<const Eigen::Vector2d>(b.description.obstacle_points);
 }
 
 void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
@@ -78,6 +86,15 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   stats.seconds_description += SecondsSince(start);
   ++stats.described;
   node.alignable = node.description.features.size() >= options.description.min_features;
+  if (options.loop_closure.refinement.points == "scans") {
+    for (const keymap::KeyMapScan& scan : key_map.scans) {
+      const ScanPoints points =
+          ExtractScanPoints(scan.scan, scan.T_base_laser, options.front_end.local_map.max_range);
+      for (const Eigen::Vector2d& p : points.points) {
+        node.scan_points.push_back(scan.T_key_scan * p);
+      }
+    }
+  }
   stats.featureless += node.alignable ? 0 : 1;
   if (options.fusion.method == "nearest") {
     node.key_map = std::move(key_map);

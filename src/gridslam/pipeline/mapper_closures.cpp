@@ -28,8 +28,7 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
   Pose2 T_a_b = result.T_a_b;
   if (options.loop_closure.refinement.enabled) {
     const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-        b.description.obstacle_points, a.description.distance, T_a_b,
-        options.loop_closure.refinement);
+        RefinementPoints(b), a.description.distance, T_a_b, options.loop_closure.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
@@ -51,14 +50,14 @@ bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<No
 
 }  // namespace
 
-std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                                   const matching::VerificationInput& verification) {
+std::optional<Pose2> Mapper::Impl::RefineFromPrior(
+    int i, int k, const Pose2& T_i_k, const matching::VerificationInput& verification) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   loop_closure::RefinementOptions refinement = options.loop_closure.refinement;
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-      b.description.obstacle_points, a.description.distance, T_i_k, refinement);
+      RefinementPoints(b), a.description.distance, T_i_k, refinement);
   if (!refined.ok || refined.inlier_fraction < options.loop_closure.prior_min_inliers) {
     return std::nullopt;
   }
@@ -98,7 +97,8 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
       continue;
     }
     const double d = Between(node.estimate, current.estimate).translation().norm();
-    const double radius = std::min(lc.max_search_radius, lc.search_radius + lc.search_radius_per_m * u);
+    const double radius =
+        std::min(lc.max_search_radius, lc.search_radius + lc.search_radius_per_m * u);
     if (d < radius) {
       candidates.push_back({d, node.id});
     }
@@ -127,7 +127,7 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     const Pose2 prior = Between(nodes[static_cast<std::size_t>(i)].estimate, current.estimate);
     const std::optional<Pose2> measured =
         distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty ? TryAlign(i, k, &prior)
-                                                                        : TryAlign(i, k, nullptr);
+                                                                         : TryAlign(i, k, nullptr);
     if (!measured.has_value()) {
       continue;
     }

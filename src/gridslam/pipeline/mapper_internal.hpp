@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "gridslam/description/keymap_describer.hpp"
@@ -24,13 +25,15 @@ namespace gridslam::pipeline {
 struct Node {
   int id = 0;
   int robot = 0;
-  int previous = -1;     ///< The robot's previous key map (vertex id), -1 for its first.
-  double travel = 0.0;   ///< The robot's path length at the key map [m].
+  int previous = -1;    ///< The robot's previous key map (vertex id), -1 for its first.
+  double travel = 0.0;  ///< The robot's path length at the key map [m].
   Time time;
-  Pose2 T_odom_key;      ///< In the robot's front-end frame.
-  Pose2 estimate;        ///< T_map_key, current estimate.
+  Pose2 T_odom_key;        ///< In the robot's front-end frame.
+  Pose2 estimate;          ///< T_map_key, current estimate.
   keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
   description::KeyMapDescription description;
+  /// Returns of the key map's own scans in its frame, for refinement (RefinementOptions::points).
+  std::vector<Eigen::Vector2d> scan_points;
   bool alignable = false;  ///< Enough features to be aligned.
 };
 
@@ -48,7 +51,7 @@ struct ScanRecord {
   Time time;
   Pose2 T_odom_base;  ///< Front-end pose.
   double travel = 0.0;
-  int node = -1;      ///< The key map holding the scan.
+  int node = -1;  ///< The key map holding the scan.
 };
 
 struct FusionScan {
@@ -92,6 +95,8 @@ struct Mapper::Impl {
   void RebuildOptimizer();
   int FindComponent(int robot);
   [[nodiscard]] Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) const;
+  /// The points of key map b refined against another map's distance field.
+  [[nodiscard]] std::span<const Eigen::Vector2d> RefinementPoints(const Node& b) const;
 
   // mapper_closures.cpp
   /// Feature alignment of k to i (refined, verified); with a `prior` (T_i_k predicted), a failed
