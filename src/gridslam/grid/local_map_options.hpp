@@ -23,6 +23,9 @@ struct LocalMapOptions {
   bool clear_no_returns = false;      ///< Whether max-range/no-return beams clear free space.
   double no_return_clearing_range = 5.0;  ///< How far such beams clear, if enabled [m].
   int surface_memory = 20;  ///< Hits averaged into a cell's mean point and normal (moving window).
+  /// Returns with no near neighbour that lie on the line through their neighbouring beams'
+  /// returns get its normal (walls at grazing incidence, ExtractScanPoints).
+  bool grazing_normals = false;
 
   /// Number of cells along each side (odd, so the window has a centre cell).
   [[nodiscard]] int NumCells() const;
@@ -47,6 +50,8 @@ struct LocalMapOptions {
       "How far a no-return beam clears when clear_no_returns is set [m]");
     v("surface_memory", surface_memory,
       "Number of recent hits averaged into a cell's mean hit point and surface normal");
+    v("grazing_normals", grazing_normals,
+      "Isolated returns on the line through their neighbours get its normal (grazing walls)");
   }
   [[nodiscard]] Status Validate() const;
 };

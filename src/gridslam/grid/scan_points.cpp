@@ -45,10 +45,44 @@ void EstimateNormal(const Eigen::Vector2d* window, int count, Eigen::Vector2d& n
   }
 }
 
+// A return with no neighbour near it may still lie on a wall seen at grazing incidence, whose
+// consecutive returns are far apart but on one line: then the line through the two neighbouring
+// returns gives its normal. The middle return must lie between them, within
+// max(kGrazingTolerance, kGrazingRelativeTolerance * gap) of their line, and neither gap may be
+// more than kGrazingGapRatio times the other (the spacing along a plane grows smoothly). An
+// isolated object in front of a background (a pole, a leg) fails the test and keeps no normal.
+constexpr double kGrazingTolerance = 0.03;          // [m]
+constexpr double kGrazingRelativeTolerance = 0.02;  // [-]
+constexpr double kGrazingGapRatio = 3.0;            // [-]
+
+void GrazingWallNormal(const Eigen::Vector2d& before, const Eigen::Vector2d& point,
+                       const Eigen::Vector2d& after, Eigen::Vector2d& normal, float& quality) {
+  const Eigen::Vector2d chord = after - before;
+  const double length = chord.norm();
+  const double gap_before = (point - before).norm();
+  const double gap_after = (after - point).norm();
+  if (length <= 1e-9 || gap_before > kGrazingGapRatio * gap_after ||
+      gap_after > kGrazingGapRatio * gap_before) {
+    return;
+  }
+  const Eigen::Vector2d direction = chord / length;
+  const double along = (point - before).dot(direction);
+  const double deviation =
+      std::abs(direction.x() * (point - before).y() - direction.y() * (point - before).x());
+  const double tolerance =
+      std::max(kGrazingTolerance, kGrazingRelativeTolerance * std::max(gap_before, gap_after));
+  if (along <= 0.0 || along >= length || deviation > tolerance) {
+    return;
+  }
+  normal = Eigen::Vector2d(-direction.y(), direction.x());
+  // Three returns define the line: as strong as a two-point fit at best (EstimateNormal).
+  quality = static_cast<float>(0.5 + 0.5 * (1.0 - deviation / tolerance));
+}
+
 }  // namespace
 
 ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, double max_range,
-                             double neighbour_distance) {
+                             double neighbour_distance, bool grazing_normals) {
   ScanPoints out;
   out.origin = T_base_laser.translation();
   const std::size_t n = scan.size();
@@ -96,6 +130,8 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
     float quality = 0.0F;
     if (count >= 2) {
       EstimateNormal(window, count, normal, quality);
+    } else if (grazing_normals && k > 0 && k + 1 < n && hit[k - 1] != 0 && hit[k + 1] != 0) {
+      GrazingWallNormal(laser_points[k - 1], laser_points[k], laser_points[k + 1], normal, quality);
     }
     out.points.push_back(T_base_laser * laser_points[k]);
     out.normals.push_back(R * normal);

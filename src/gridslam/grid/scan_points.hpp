@@ -29,8 +29,10 @@ struct ScanPoints {
 /// are dropped (they count neither as hits nor as no-returns); readings that are not finite or at
 /// or below range_min are ignored. Normals use up to two hits on either side of a beam that lie
 /// within `neighbour_distance` [m] of it, or within six beam spacings at its range if that is
-/// more (far walls seen at a grazing angle).
+/// more (far walls seen at a grazing angle). With `grazing_normals`, a return with no such
+/// neighbour that lies on the line through the returns of the beams on either side, between them,
+/// gets that line's normal (a wall at grazing incidence; an isolated object keeps none).
 ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, double max_range,
-                             double neighbour_distance = 0.25);
+                             double neighbour_distance = 0.25, bool grazing_normals = false);
 
 }  // namespace gridslam

@@ -36,5 +36,43 @@ TEST(ExtractScanPoints, AppliesTheMountingAndEstimatesNormals) {
   EXPECT_LT(near.size(), points.size());
 }
 
+// A wall y = 1 seen at 3..8 degrees: consecutive returns lie metres apart, beyond the normal
+// neighbourhood, so they have no normal unless grazing_normals recognizes the line; a pole in
+// front of a background wall never passes for a wall.
+TEST(ExtractScanPoints, GrazingWallsGetTheirNormalIsolatedObjectsDoNot) {
+  LaserScan scan;
+  scan.angle_min = 3.0 * std::numbers::pi / 180.0;
+  scan.angle_increment = std::numbers::pi / 180.0;
+  scan.range_min = 0.05;
+  scan.range_max = 80.0;
+  for (int k = 0; k <= 5; ++k) {
+    scan.ranges.push_back(
+        static_cast<float>(1.0 / std::sin(scan.Angle(static_cast<std::size_t>(k)))));
+  }
+  const ScanPoints plain = ExtractScanPoints(scan, Pose2(), 30.0);
+  const ScanPoints grazing = ExtractScanPoints(scan, Pose2(), 30.0, 0.25, true);
+  ASSERT_EQ(plain.size(), 6U);
+  ASSERT_EQ(grazing.size(), 6U);
+  for (std::size_t k = 1; k + 1 < 6; ++k) {
+    EXPECT_LT(plain.normal_quality[k], 0.5F) << k;
+    EXPECT_GE(grazing.normal_quality[k], 0.5F) << k;
+    EXPECT_NEAR(std::abs(grazing.normals[k].y()), 1.0, 1e-4) << k;
+  }
+  // The two ends have a neighbour on one side only: no line to test.
+  EXPECT_LT(grazing.normal_quality[0], 0.5F);
+
+  LaserScan pole;
+  pole.angle_min = -0.1;
+  pole.angle_increment = std::numbers::pi / 180.0;
+  pole.range_min = 0.05;
+  pole.range_max = 80.0;
+  pole.ranges.assign(11, 10.0F);  // background at 10 m
+  pole.ranges[5] = 4.0F;          // a pole
+  const ScanPoints with_pole = ExtractScanPoints(pole, Pose2(), 30.0, 0.25, true);
+  ASSERT_EQ(with_pole.size(), 11U);
+  EXPECT_LT(with_pole.normal_quality[5], 0.5F);
+  EXPECT_GE(with_pole.normal_quality[4], 0.5F);
+}
+
 }  // namespace
 }  // namespace gridslam

@@ -106,7 +106,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   ++stats_.frames;
   auto start = Clock::now();
   const ScanPoints points =
-      ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range);
+      ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range, 0.25,
+                        options_.local_map.grazing_normals);
   stats_.seconds_preprocess += SecondsSince(start);
 
   Pose2 pose = frame.T_odom_base;
