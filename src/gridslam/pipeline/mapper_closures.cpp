@@ -12,7 +12,8 @@
 
 namespace gridslam::pipeline {
 
-std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
+std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior,
+                                            double uncertainty_distance) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   const matching::VerificationInput verification =
@@ -21,15 +22,15 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
       a.description.features, b.description.features, options.matching, &verification);
   if (!result.accepted) {
     return prior != nullptr && options.loop_closure.prior_refinement
-               ? RefineFromPrior(i, k, *prior, verification)
+               ? RefineFromPrior(i, k, *prior, verification, uncertainty_distance)
                : std::nullopt;
   }
   ++stats.verified;
   Pose2 T_a_b = result.T_a_b;
   if (options.loop_closure.refinement.enabled) {
-    const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-        b.description.obstacle_points, a.description.distance, T_a_b,
-        options.loop_closure.refinement);
+    const loop_closure::RefinementResult refined =
+        loop_closure::RefineOnDistanceField(b.description.obstacle_points, a.description.distance,
+                                            T_a_b, options.loop_closure.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
@@ -52,13 +53,29 @@ bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<No
 }  // namespace
 
 std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                                   const matching::VerificationInput& verification) {
+                                                   const matching::VerificationInput& verification,
+                                                   double uncertainty_distance) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   loop_closure::RefinementOptions refinement = options.loop_closure.refinement;
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
+  // After a long loop the prediction may be off by more than the refinement converges from.
+  const loop_closure::PriorSearchOptions& search = options.loop_closure.prior_search;
+  const double window = std::min(search.max_window_xy, search.window_per_m * uncertainty_distance);
+  Pose2 start = T_i_k;
+  if (search.enabled && window > search.min_window_xy) {
+    ++stats.prior_searches;
+    const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
+        b.description.obstacle_points, a.description.distance, T_i_k, window, search);
+    GRIDSLAM_LOG_DEBUG("prior search {}-{}: window {:.2f} m, score {:.3f}, rival {:.3f}, {}", i, k,
+                       window, found.score, found.rival, found.ok ? "ok" : "refused");
+    if (!found.ok) {
+      return std::nullopt;
+    }
+    start = found.T_a_b;
+  }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-      b.description.obstacle_points, a.description.distance, T_i_k, refinement);
+      b.description.obstacle_points, a.description.distance, start, refinement);
   if (!refined.ok || refined.inlier_fraction < options.loop_closure.prior_min_inliers) {
     return std::nullopt;
   }
@@ -98,7 +115,8 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
       continue;
     }
     const double d = Between(node.estimate, current.estimate).translation().norm();
-    const double radius = std::min(lc.max_search_radius, lc.search_radius + lc.search_radius_per_m * u);
+    const double radius =
+        std::min(lc.max_search_radius, lc.search_radius + lc.search_radius_per_m * u);
     if (d < radius) {
       candidates.push_back({d, node.id});
     }
@@ -126,9 +144,13 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     ++stats.candidates;
     const Pose2 prior = Between(nodes[static_cast<std::size_t>(i)].estimate, current.estimate);
     const std::optional<Pose2> measured =
-        distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty ? TryAlign(i, k, &prior)
-                                                                        : TryAlign(i, k, nullptr);
+        distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty
+            ? TryAlign(i, k, &prior, distance[static_cast<std::size_t>(i)])
+            : TryAlign(i, k, nullptr);
     if (!measured.has_value()) {
+      GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) not aligned, uncertainty {:.1f} m", i, k,
+                         ToSeconds(nodes[static_cast<std::size_t>(i)].time),
+                         ToSeconds(current.time), distance[static_cast<std::size_t>(i)]);
       continue;
     }
     const Node& old = nodes[static_cast<std::size_t>(i)];
@@ -136,6 +158,9 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     const Pose2 error = Between(predicted, *measured);
     const double u = distance[static_cast<std::size_t>(i)];
     ClosureRecord record{i, k, *measured, "accepted", false};
+    GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
+                       ToSeconds(old.time), ToSeconds(current.time), error.translation().norm(),
+                       error.theta());
     const bool in_gate = error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
                          std::abs(error.theta()) <= lc.gate_theta + lc.gate_theta_per_m * u;
     std::vector<PendingJoin> group = {{i, k, *measured}};

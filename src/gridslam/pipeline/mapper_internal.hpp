@@ -24,11 +24,11 @@ namespace gridslam::pipeline {
 struct Node {
   int id = 0;
   int robot = 0;
-  int previous = -1;     ///< The robot's previous key map (vertex id), -1 for its first.
-  double travel = 0.0;   ///< The robot's path length at the key map [m].
+  int previous = -1;    ///< The robot's previous key map (vertex id), -1 for its first.
+  double travel = 0.0;  ///< The robot's path length at the key map [m].
   Time time;
-  Pose2 T_odom_key;      ///< In the robot's front-end frame.
-  Pose2 estimate;        ///< T_map_key, current estimate.
+  Pose2 T_odom_key;        ///< In the robot's front-end frame.
+  Pose2 estimate;          ///< T_map_key, current estimate.
   keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
   description::KeyMapDescription description;
   bool alignable = false;  ///< Enough features to be aligned.
@@ -48,7 +48,7 @@ struct ScanRecord {
   Time time;
   Pose2 T_odom_base;  ///< Front-end pose.
   double travel = 0.0;
-  int node = -1;      ///< The key map holding the scan.
+  int node = -1;  ///< The key map holding the scan.
 };
 
 struct FusionScan {
@@ -96,11 +96,15 @@ struct Mapper::Impl {
   // mapper_closures.cpp
   /// Feature alignment of k to i (refined, verified); with a `prior` (T_i_k predicted), a failed
   /// feature alignment falls back to RefineFromPrior.
-  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior);
-  /// Grid-to-grid refinement from a predicted transform, accepted only if well constrained and
-  /// verified.
+  /// `uncertainty_distance`: the uncertainty distance between the key maps [m] (sizes the search).
+  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior,
+                                double uncertainty_distance = 0.0);
+  /// Grid-to-grid refinement from a predicted transform (seeded by a correlative search when the
+  /// uncertainty distance allows a large prediction error), accepted only if well constrained
+  /// and verified.
   std::optional<Pose2> RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                       const matching::VerificationInput& verification);
+                                       const matching::VerificationInput& verification,
+                                       double uncertainty_distance);
   /// True when an accepted closure calls for online optimization.
   bool SearchPriorCandidates(int k);
 
