@@ -1,11 +1,13 @@
 #include "gridslam/loop_closure/prior_search.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+#include "gridslam/loop_closure/grid_refinement.hpp"
 
 namespace gridslam::loop_closure {
 namespace {
@@ -63,11 +65,22 @@ TEST(PriorSearch, FindsATransformFarOutsideTheRefinementBasin) {
   const PriorSearchOptions options;
   const PriorSearchResult result = SearchAroundPrior(points_b, distance, prior, 2.5, options);
   ASSERT_TRUE(result.ok) << result.score << " " << result.rival;
-  EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(), 0.1);
-  EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - T_a_b.theta())), 0.01);
-  EXPECT_GT(result.score, 0.8);  // on the grid of poses, up to half a step from the truth
+  // The best pose of the grid is within half a step of the truth per axis ...
+  EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(),
+            0.75 * options.linear_step * std::sqrt(2.0));
+  EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - T_a_b.theta())),
+            0.75 * options.angular_step);
+  EXPECT_GT(result.score, 0.7);
   EXPECT_LT(result.rival, options.max_ambiguity * result.score);
   EXPECT_GT(result.poses, 1000);
+  // ... inside the basin of the refinement on the distance field.
+  RefinementOptions refinement;
+  refinement.max_distance = 0.5;
+  const RefinementResult refined =
+      RefineOnDistanceField(points_b, distance, result.T_a_b, refinement);
+  ASSERT_TRUE(refined.ok);
+  EXPECT_LT((refined.T_a_b.translation() - T_a_b.translation()).norm(), 0.01);
+  EXPECT_LT(std::abs(NormalizeAngle(refined.T_a_b.theta() - T_a_b.theta())), 0.002);
 }
 
 TEST(PriorSearch, RefusesAPoseTheWindowDoesNotHold) {

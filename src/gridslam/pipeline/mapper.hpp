@@ -55,8 +55,9 @@ struct MapperStats {
   long candidates = 0;  ///< Prior-based candidates aligned.
   long appearance_queries = 0;
   long appearance_candidates = 0;
-  long verified = 0;        ///< Alignments accepted by matching + verification.
-  long prior_refined = 0;   ///< Of which: found by refinement from the prediction (no features).
+  long verified = 0;       ///< Alignments accepted by matching + verification.
+  long prior_refined = 0;  ///< Of which: found by refinement from the prediction (no features).
+  long online_full_optimizations = 0;  ///< After closures correcting beyond the gate floor.
   long prior_searches = 0;  ///< Correlative searches around the prediction (prior_search.hpp).
   long accepted = 0;        ///< Loop edges added.
   long rejected_gate = 0;

@@ -77,16 +77,24 @@ std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
       b.description.obstacle_points, a.description.distance, start, refinement);
   if (!refined.ok || refined.inlier_fraction < options.loop_closure.prior_min_inliers) {
+    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, ok {}, inliers {:.2f}", i, k, refined.ok,
+                       refined.inlier_fraction);
     return std::nullopt;
   }
   // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(refined.hessian.topLeftCorner<2, 2>());
   if (eig.eigenvalues()(0) < options.loop_closure.prior_min_constraint * eig.eigenvalues()(1)) {
+    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained", i, k);
     return std::nullopt;
   }
   const matching::VerificationResult verified =
       matching::VerifyAlignment(refined.T_a_b, verification, options.matching.verification);
   if (!verified.accepted) {
+    GRIDSLAM_LOG_DEBUG(
+        "prior refinement {}-{}: not verified, overlap {} ({}), agreement {:.2f}, contradiction "
+        "{:.2f}",
+        i, k, verified.overlap, verified.enough_overlap, verified.agreement,
+        verified.contradiction);
     return std::nullopt;
   }
   ++stats.prior_refined;
@@ -217,6 +225,11 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
       ++stats.accepted;
     }
     // Only closures that disagree with the estimate make online optimization worth its cost.
+    // A closure correcting the estimate by more than the gate's floor: a few SGD iterations
+    // would leave most of it, and the next key maps' correct closures would be gated against
+    // the stale estimate; the whole graph is optimized instead (mapper.cpp).
+    large_correction_ = large_correction_ || !in_gate || error.translation().norm() > lc.gate_xy ||
+                        std::abs(error.theta()) > lc.gate_theta;
     accepted_any = accepted_any || !in_gate ||
                    error.translation().norm() > options.graph.online_trigger_xy ||
                    std::abs(error.theta()) > options.graph.online_trigger_theta;
