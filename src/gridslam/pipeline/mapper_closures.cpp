@@ -73,6 +73,7 @@ std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_
       return std::nullopt;
     }
     start = found.T_a_b;
+    searched_ = true;
   }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
       b.description.obstacle_points, a.description.distance, start, refinement);
@@ -150,6 +151,7 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
   bool accepted_any = false;
   for (const int i : chosen) {
     ++stats.candidates;
+    searched_ = false;
     const Pose2 prior = Between(nodes[static_cast<std::size_t>(i)].estimate, current.estimate);
     const std::optional<Pose2> measured =
         distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty
@@ -169,7 +171,10 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
                        ToSeconds(old.time), ToSeconds(current.time), error.translation().norm(),
                        error.theta());
-    const bool in_gate = error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
+    // A closure found by the prior search is never trusted alone: in a wide window a look-alike
+    // place (a row of identical bays) may score best; it needs the support of other closures.
+    const bool in_gate = !searched_ &&
+                         error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
                          std::abs(error.theta()) <= lc.gate_theta + lc.gate_theta_per_m * u;
     std::vector<PendingJoin> group = {{i, k, *measured}};
     if (!in_gate) {

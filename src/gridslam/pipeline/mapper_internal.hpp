@@ -137,6 +137,7 @@ struct Mapper::Impl {
   std::vector<PendingJoin> across;
   std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
   std::vector<int> prior_tried;    ///< Key maps the last prior-based search aligned.
+  bool searched_ = false;          ///< The last prior refinement was seeded by a search.
   bool large_correction_ = false;  ///< The last search accepted a closure beyond the gate floor.
   loop_closure::UncertaintyGraph uncertainty;
   std::unique_ptr<pose_graph::SgdOptimizer> sgd;
