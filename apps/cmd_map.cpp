@@ -2,8 +2,6 @@
 // LOG is one robot with its own odometry frame and unknown start; their frames are processed
 // interleaved by time, as a team would deliver them. Writes the map(s), the corrected
 // trajectories, the optimized graph, the effective configuration and a report into DIR.
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,11 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app_map_output.hpp"
-#include "command.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+
+#include "app_map_output.hpp"
+#include "command.hpp"
+#include <unistd.h>
 
 namespace gridslam::app {
 namespace {
@@ -40,6 +40,8 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
             {"appearance_candidates", s.appearance_candidates},
             {"verified", s.verified},
             {"found_by_prior_refinement", s.prior_refined},
+            {"prior_searches", s.prior_searches},
+            {"online_full_optimizations", s.online_full_optimizations},
             {"accepted", s.accepted},
             {"rejected_gate", s.rejected_gate},
             {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},
@@ -156,8 +158,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
-  const std::string config = "# gridslam map: effective configuration\n" +
-                             io::OptionsToYaml(context.options);
+  const std::string config =
+      "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
   if (const Status s = WriteMapOutputs(args.output, result, robots,
                                        context.options.eval.trajectory_frame, config, report);
       !s.ok()) {

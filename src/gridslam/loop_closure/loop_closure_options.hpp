@@ -3,6 +3,7 @@
 
 #include "gridslam/common/options.hpp"
 #include "gridslam/loop_closure/grid_refinement.hpp"
+#include "gridslam/loop_closure/prior_search.hpp"
 
 namespace gridslam::loop_closure {
 
@@ -70,12 +71,15 @@ struct LoopClosureOptions {
   /// below prior_max_uncertainty [m], refine the predicted transform on the distance field and
   /// accept it if at least prior_min_inliers of the points agree [-], the weaker translation
   /// direction keeps prior_min_constraint of the stronger's information [-] (no corridor
-  /// sliding), and the grids verify.
+  /// sliding), and the grids verify. When the uncertainty distance allows a prediction error
+  /// beyond the refinement's basin, a correlative search around the prediction seeds it
+  /// (prior_search.hpp).
   bool prior_refinement = true;
-  double prior_max_uncertainty = 10.0;
+  double prior_max_uncertainty = 1000.0;
   double prior_min_inliers = 0.6;
   double prior_min_constraint = 0.1;
   RefinementOptions refinement;
+  PriorSearchOptions prior_search;
 
   template <class V>
   void Visit(V& v) {
@@ -126,6 +130,8 @@ struct LoopClosureOptions {
     v("prior_min_constraint", prior_min_constraint,
       "... and this ratio of weakest to strongest translation information [-]");
     v.Section("refinement", refinement, "Refinement of alignments on the distance field");
+    v.Section("prior_search", prior_search,
+              "Correlative search around the prediction seeding the prior refinement");
   }
   [[nodiscard]] Status Validate() const;
 };

@@ -137,6 +137,7 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   ++state.num_nodes;
 
   bool changed = false;
+  large_correction_ = false;
   if (options.loop_closure.enabled && nodes.back().alignable) {
     start = std::chrono::steady_clock::now();
     changed = SearchPriorCandidates(id) || changed;
@@ -152,7 +153,10 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
       state.appearance_travel = state.travel;
     }
   }
-  if (changed) {
+  if (large_correction_ && options.graph.optimize_large_corrections) {
+    ++stats.online_full_optimizations;
+    OptimizeNow();
+  } else if (changed) {
     Iterate(options.graph.online_iterations);
   }
 }

@@ -32,7 +32,7 @@ struct ClosureRecord {
   int from = 0;  ///< Older key map (vertex id).
   int to = 0;    ///< Newer key map.
   Pose2 T_from_to;
-  std::string outcome;  ///< accepted, gate, pending, joined, pruned.
+  std::string outcome;      ///< accepted, gate, pending, joined, pruned.
   bool appearance = false;  ///< Found by the appearance search (no prior).
 };
 
@@ -40,10 +40,10 @@ struct ClosureRecord {
 struct JoinRecord {
   int robot_a = 0;
   int robot_b = 0;
-  Time time;        ///< Time of the frame that completed the join.
+  Time time;         ///< Time of the frame that completed the join.
   int vertex_a = 0;  ///< The first matched key maps.
   int vertex_b = 0;
-  int matches = 0;   ///< Consistent matches used.
+  int matches = 0;  ///< Consistent matches used.
 };
 
 struct MapperStats {
@@ -52,12 +52,14 @@ struct MapperStats {
   long described = 0;
   long featureless = 0;  ///< Key maps with too few features to align.
   long sequential_aligned = 0;
-  long candidates = 0;   ///< Prior-based candidates aligned.
+  long candidates = 0;  ///< Prior-based candidates aligned.
   long appearance_queries = 0;
   long appearance_candidates = 0;
-  long verified = 0;     ///< Alignments accepted by matching + verification.
+  long verified = 0;       ///< Alignments accepted by matching + verification.
   long prior_refined = 0;  ///< Of which: found by refinement from the prediction (no features).
-  long accepted = 0;     ///< Loop edges added.
+  long online_full_optimizations = 0;  ///< After closures correcting beyond the gate floor.
+  long prior_searches = 0;  ///< Correlative searches around the prediction (prior_search.hpp).
+  long accepted = 0;        ///< Loop edges added.
   long rejected_gate = 0;
   long pruned = 0;
   long joins = 0;
@@ -73,7 +75,7 @@ struct MapperStats {
 struct MapperResult {
   std::vector<std::vector<TrajectoryPose>> trajectories;  ///< Per robot, every scan.
   pose_graph::PoseGraph graph;                            ///< Optimized key-map graph.
-  std::vector<int> vertex_robot;  ///< Robot of each vertex (by vertex id).
+  std::vector<int> vertex_robot;                          ///< Robot of each vertex (by vertex id).
   std::vector<int> component_of_robot;  ///< Robots with the same value share one map frame.
   std::vector<ClosureRecord> closures;
   std::vector<JoinRecord> joins;

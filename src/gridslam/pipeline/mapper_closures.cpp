@@ -12,7 +12,8 @@
 
 namespace gridslam::pipeline {
 
-std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
+std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior,
+                                            double uncertainty_distance) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   const matching::VerificationInput verification =
@@ -21,14 +22,15 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior) {
       a.description.features, b.description.features, options.matching, &verification);
   if (!result.accepted) {
     return prior != nullptr && options.loop_closure.prior_refinement
-               ? RefineFromPrior(i, k, *prior, verification)
+               ? RefineFromPrior(i, k, *prior, verification, uncertainty_distance)
                : std::nullopt;
   }
   ++stats.verified;
   Pose2 T_a_b = result.T_a_b;
   if (options.loop_closure.refinement.enabled) {
-    const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-        RefinementPoints(b), a.description.distance, T_a_b, options.loop_closure.refinement);
+    const loop_closure::RefinementResult refined =
+        loop_closure::RefineOnDistanceField(RefinementPoints(b), a.description.distance, T_a_b,
+                                          options.loop_closure.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
@@ -50,25 +52,50 @@ bool Consistent(const PendingJoin& a, const PendingJoin& b, const std::vector<No
 
 }  // namespace
 
-std::optional<Pose2> Mapper::Impl::RefineFromPrior(
-    int i, int k, const Pose2& T_i_k, const matching::VerificationInput& verification) {
+std::optional<Pose2> Mapper::Impl::RefineFromPrior(int i, int k, const Pose2& T_i_k,
+                                                   const matching::VerificationInput& verification,
+                                                   double uncertainty_distance) {
   const Node& a = nodes[static_cast<std::size_t>(i)];
   const Node& b = nodes[static_cast<std::size_t>(k)];
   loop_closure::RefinementOptions refinement = options.loop_closure.refinement;
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
+  // After a long loop the prediction may be off by more than the refinement converges from.
+  const loop_closure::PriorSearchOptions& search = options.loop_closure.prior_search;
+  const double window = std::min(search.max_window_xy, search.window_per_m * uncertainty_distance);
+  Pose2 start = T_i_k;
+  if (search.enabled && window > search.min_window_xy) {
+    ++stats.prior_searches;
+    const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
+        b.description.obstacle_points, a.description.distance, T_i_k, window, search);
+    GRIDSLAM_LOG_DEBUG("prior search {}-{}: window {:.2f} m, score {:.3f}, rival {:.3f}, {}", i, k,
+                       window, found.score, found.rival, found.ok ? "ok" : "refused");
+    if (!found.ok) {
+      return std::nullopt;
+    }
+    start = found.T_a_b;
+    searched_ = true;
+  }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-      RefinementPoints(b), a.description.distance, T_i_k, refinement);
+      RefinementPoints(b), a.description.distance, start, refinement);
   if (!refined.ok || refined.inlier_fraction < options.loop_closure.prior_min_inliers) {
+    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, ok {}, inliers {:.2f}", i, k, refined.ok,
+                       refined.inlier_fraction);
     return std::nullopt;
   }
   // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(refined.hessian.topLeftCorner<2, 2>());
   if (eig.eigenvalues()(0) < options.loop_closure.prior_min_constraint * eig.eigenvalues()(1)) {
+    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained", i, k);
     return std::nullopt;
   }
   const matching::VerificationResult verified =
       matching::VerifyAlignment(refined.T_a_b, verification, options.matching.verification);
   if (!verified.accepted) {
+    GRIDSLAM_LOG_DEBUG(
+        "prior refinement {}-{}: not verified, overlap {} ({}), agreement {:.2f}, contradiction "
+        "{:.2f}",
+        i, k, verified.overlap, verified.enough_overlap, verified.agreement,
+        verified.contradiction);
     return std::nullopt;
   }
   ++stats.prior_refined;
@@ -124,11 +151,16 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
   bool accepted_any = false;
   for (const int i : chosen) {
     ++stats.candidates;
+    searched_ = false;
     const Pose2 prior = Between(nodes[static_cast<std::size_t>(i)].estimate, current.estimate);
     const std::optional<Pose2> measured =
-        distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty ? TryAlign(i, k, &prior)
-                                                                         : TryAlign(i, k, nullptr);
+        distance[static_cast<std::size_t>(i)] < lc.prior_max_uncertainty
+            ? TryAlign(i, k, &prior, distance[static_cast<std::size_t>(i)])
+            : TryAlign(i, k, nullptr);
     if (!measured.has_value()) {
+      GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) not aligned, uncertainty {:.1f} m", i, k,
+                         ToSeconds(nodes[static_cast<std::size_t>(i)].time),
+                         ToSeconds(current.time), distance[static_cast<std::size_t>(i)]);
       continue;
     }
     const Node& old = nodes[static_cast<std::size_t>(i)];
@@ -136,7 +168,13 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     const Pose2 error = Between(predicted, *measured);
     const double u = distance[static_cast<std::size_t>(i)];
     ClosureRecord record{i, k, *measured, "accepted", false};
-    const bool in_gate = error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
+    GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
+                       ToSeconds(old.time), ToSeconds(current.time), error.translation().norm(),
+                       error.theta());
+    // A closure found by the prior search is never trusted alone: in a wide window a look-alike
+    // place (a row of identical bays) may score best; it needs the support of other closures.
+    const bool in_gate = !searched_ &&
+                         error.translation().norm() <= lc.gate_xy + lc.gate_xy_per_m * u &&
                          std::abs(error.theta()) <= lc.gate_theta + lc.gate_theta_per_m * u;
     std::vector<PendingJoin> group = {{i, k, *measured}};
     if (!in_gate) {
@@ -192,6 +230,11 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
       ++stats.accepted;
     }
     // Only closures that disagree with the estimate make online optimization worth its cost.
+    // A closure correcting the estimate by more than the gate's floor: a few SGD iterations
+    // would leave most of it, and the next key maps' correct closures would be gated against
+    // the stale estimate; the whole graph is optimized instead (mapper.cpp).
+    large_correction_ = large_correction_ || !in_gate || error.translation().norm() > lc.gate_xy ||
+                        std::abs(error.theta()) > lc.gate_theta;
     accepted_any = accepted_any || !in_gate ||
                    error.translation().norm() > options.graph.online_trigger_xy ||
                    std::abs(error.theta()) > options.graph.online_trigger_theta;

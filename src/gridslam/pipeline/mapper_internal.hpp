@@ -101,11 +101,15 @@ struct Mapper::Impl {
   // mapper_closures.cpp
   /// Feature alignment of k to i (refined, verified); with a `prior` (T_i_k predicted), a failed
   /// feature alignment falls back to RefineFromPrior.
-  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior);
-  /// Grid-to-grid refinement from a predicted transform, accepted only if well constrained and
-  /// verified.
+  /// `uncertainty_distance`: the uncertainty distance between the key maps [m] (sizes the search).
+  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior,
+                                double uncertainty_distance = 0.0);
+  /// Grid-to-grid refinement from a predicted transform (seeded by a correlative search when the
+  /// uncertainty distance allows a large prediction error), accepted only if well constrained
+  /// and verified.
   std::optional<Pose2> RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                       const matching::VerificationInput& verification);
+                                       const matching::VerificationInput& verification,
+                                       double uncertainty_distance);
   /// True when an accepted closure calls for online optimization.
   bool SearchPriorCandidates(int k);
 
@@ -138,6 +142,8 @@ struct Mapper::Impl {
   std::vector<PendingJoin> across;
   std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
   std::vector<int> prior_tried;    ///< Key maps the last prior-based search aligned.
+  bool searched_ = false;          ///< The last prior refinement was seeded by a search.
+  bool large_correction_ = false;  ///< The last search accepted a closure beyond the gate floor.
   loop_closure::UncertaintyGraph uncertainty;
   std::unique_ptr<pose_graph::SgdOptimizer> sgd;
   MapperStats stats;

@@ -14,17 +14,20 @@ struct GraphOptions {
   /// and agrees with the front end, else the front end's).
   std::string sequential_edges = "front_end";
   /// Sequential edge standard deviations: a floor plus a part per metre between the key maps.
-  double sequential_sigma_xy = 0.01;           ///< [m]
-  double sequential_sigma_xy_per_m = 0.01;     ///< [m/m]
-  double sequential_sigma_theta = 0.002;       ///< [rad]
+  double sequential_sigma_xy = 0.01;            ///< [m]
+  double sequential_sigma_xy_per_m = 0.01;      ///< [m/m]
+  double sequential_sigma_theta = 0.002;        ///< [rad]
   double sequential_sigma_theta_per_m = 0.002;  ///< [rad/m]
   /// Weight of a loop edge in the uncertainty distance (DESIGN 1.6) [m].
   double loop_uncertainty = 0.5;
   /// SGD iterations run after a key map whose accepted closures disagree with the current
   /// estimate by more than online_trigger_xy / online_trigger_theta (online, incremental) [-].
   int online_iterations = 5;
-  double online_trigger_xy = 0.05;      ///< [m]
+  double online_trigger_xy = 0.05;     ///< [m]
   double online_trigger_theta = 0.01;  ///< [rad]
+  /// After a key map whose accepted prior-based closure corrects the estimate by more than the
+  /// gate floor (loop_closure.gate_xy, gate_theta), optimize the whole graph (optimizer) instead.
+  bool optimize_large_corrections = true;
   /// Final optimization of the whole graph: gn, lm, sgd+gn, sgd or none.
   std::string final_method = "gn";
   /// Rounds of final optimization + pruning of inconsistent loop edges [-].
@@ -39,7 +42,8 @@ struct GraphOptions {
     v("sequential_sigma_xy", sequential_sigma_xy, "Sequential edge std, translation floor [m]");
     v("sequential_sigma_xy_per_m", sequential_sigma_xy_per_m,
       "... plus this per metre between the key maps [m/m]");
-    v("sequential_sigma_theta", sequential_sigma_theta, "Sequential edge std, rotation floor [rad]");
+    v("sequential_sigma_theta", sequential_sigma_theta,
+      "Sequential edge std, rotation floor [rad]");
     v("sequential_sigma_theta_per_m", sequential_sigma_theta_per_m,
       "... plus this per metre [rad/m]");
     v("loop_uncertainty", loop_uncertainty,
@@ -49,6 +53,8 @@ struct GraphOptions {
     v("online_trigger_xy", online_trigger_xy,
       "Optimize online when a closure differs from the estimate by more than this [m] ...");
     v("online_trigger_theta", online_trigger_theta, "... or by more than this [rad]");
+    v("optimize_large_corrections", optimize_large_corrections,
+      "Optimize the whole graph after closures correcting beyond the gate floor");
     v("final_method", final_method, "Final optimization: gn, lm, sgd+gn, sgd or none");
     v("prune_rounds", prune_rounds, "Rounds of final optimization and loop-edge pruning [-]");
     v("interpolate_corrections", interpolate_corrections,
@@ -65,10 +71,10 @@ struct GraphOptions {
                 "graph sequential sigma growth >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(loop_uncertainty >= 0.0, "graph.loop_uncertainty >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(online_iterations >= 0, "graph.online_iterations >= 0"));
-    GRIDSLAM_RETURN_IF_ERROR(
-        Require(final_method == "gn" || final_method == "lm" || final_method == "sgd+gn" ||
-                    final_method == "sgd" || final_method == "none",
-                "graph.final_method is gn, lm, sgd+gn, sgd or none"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(final_method == "gn" || final_method == "lm" ||
+                                         final_method == "sgd+gn" || final_method == "sgd" ||
+                                         final_method == "none",
+                                     "graph.final_method is gn, lm, sgd+gn, sgd or none"));
     return Require(prune_rounds >= 1, "graph.prune_rounds >= 1");
   }
 };

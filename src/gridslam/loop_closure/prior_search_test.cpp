@@ -1,0 +1,111 @@
+#include "gridslam/loop_closure/prior_search.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+#include "gridslam/loop_closure/grid_refinement.hpp"
+
+namespace gridslam::loop_closure {
+namespace {
+
+constexpr double kResolution = 0.05;
+
+// An irregular room (walls, a slanted wall, two pillars) in a 12 m grid.
+Grid2D<std::uint8_t> Room() {
+  Grid2D<std::uint8_t> obstacles(MapLimits(kResolution, Eigen::Vector2d(-6.0, -6.0), 240, 240), 0);
+  for (int k = 30; k < 210; ++k) {
+    obstacles(k, 30) = 1;
+    obstacles(30, k) = 1;
+    obstacles(k, 209) = 1;
+    obstacles(209, k / 2 + 105) = 1;
+  }
+  for (int i = 100; i < 112; ++i) {
+    for (int j = 70; j < 75; ++j) {
+      obstacles(i, j) = 1;
+      obstacles(j + 80, i + 30) = 1;
+    }
+  }
+  return obstacles;
+}
+
+// A corridor: two long parallel walls, nothing along them.
+Grid2D<std::uint8_t> Corridor() {
+  Grid2D<std::uint8_t> obstacles(MapLimits(kResolution, Eigen::Vector2d(-6.0, -6.0), 240, 240), 0);
+  for (int i = 0; i < 240; ++i) {
+    obstacles(i, 100) = 1;
+    obstacles(i, 140) = 1;
+  }
+  return obstacles;
+}
+
+std::vector<Eigen::Vector2d> PointsSeenFrom(const Grid2D<std::uint8_t>& obstacles,
+                                            const Pose2& T_a_b) {
+  std::vector<Eigen::Vector2d> points_b;
+  for (int j = 0; j < obstacles.Height(); ++j) {
+    for (int i = 0; i < obstacles.Width(); ++i) {
+      if (obstacles(i, j) != 0) {
+        points_b.push_back(T_a_b.Inverse() * obstacles.Limits().CellCenter({i, j}));
+      }
+    }
+  }
+  return points_b;
+}
+
+TEST(PriorSearch, FindsATransformFarOutsideTheRefinementBasin) {
+  const Grid2D<std::uint8_t> obstacles = Room();
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  const Pose2 T_a_b(0.4, -0.3, 0.2);
+  const std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
+  // The prediction is 1.6 m and 3 degrees off.
+  const Pose2 prior = Pose2(1.3, -0.9, 0.0) * T_a_b * Pose2(0.0, 0.0, -0.05);
+  const PriorSearchOptions options;
+  const PriorSearchResult result = SearchAroundPrior(points_b, distance, prior, 2.5, options);
+  ASSERT_TRUE(result.ok) << result.score << " " << result.rival;
+  // The best pose of the grid is within half a step of the truth per axis ...
+  EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(),
+            0.75 * options.linear_step * std::sqrt(2.0));
+  EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - T_a_b.theta())),
+            0.75 * options.angular_step);
+  EXPECT_GT(result.score, 0.7);
+  EXPECT_LT(result.rival, options.max_ambiguity * result.score);
+  EXPECT_GT(result.poses, 1000);
+  // ... inside the basin of the refinement on the distance field.
+  RefinementOptions refinement;
+  refinement.max_distance = 0.5;
+  const RefinementResult refined =
+      RefineOnDistanceField(points_b, distance, result.T_a_b, refinement);
+  ASSERT_TRUE(refined.ok);
+  EXPECT_LT((refined.T_a_b.translation() - T_a_b.translation()).norm(), 0.01);
+  EXPECT_LT(std::abs(NormalizeAngle(refined.T_a_b.theta() - T_a_b.theta())), 0.002);
+}
+
+TEST(PriorSearch, RefusesAPoseTheWindowDoesNotHold) {
+  const Grid2D<std::uint8_t> obstacles = Room();
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  const Pose2 T_a_b(0.4, -0.3, 0.2);
+  const std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
+  const Pose2 prior = Pose2(1.3, -0.9, 0.0) * T_a_b;
+  const PriorSearchResult result =
+      SearchAroundPrior(points_b, distance, prior, 0.5, PriorSearchOptions{});
+  EXPECT_FALSE(result.ok) << result.score;
+}
+
+TEST(PriorSearch, RefusesACorridorAsAmbiguous) {
+  const Grid2D<std::uint8_t> obstacles = Corridor();
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  const Pose2 T_a_b(0.5, 0.0, 0.0);
+  std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
+  // b saw only the middle part of the corridor.
+  std::erase_if(points_b, [](const Eigen::Vector2d& p) { return std::abs(p.x()) > 3.0; });
+  const PriorSearchResult result =
+      SearchAroundPrior(points_b, distance, Pose2(1.5, 0.0, 0.0), 2.5, PriorSearchOptions{});
+  EXPECT_GT(result.score, 0.9);
+  EXPECT_FALSE(result.ok) << result.score << " " << result.rival;
+}
+
+}  // namespace
+}  // namespace gridslam::loop_closure
