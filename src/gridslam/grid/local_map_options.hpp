@@ -25,7 +25,7 @@ struct LocalMapOptions {
   int surface_memory = 20;  ///< Hits averaged into a cell's mean point and normal (moving window).
   /// Returns with no near neighbour that lie on the line through their neighbouring beams'
   /// returns get its normal (walls at grazing incidence, ExtractScanPoints).
-  bool grazing_normals = false;
+  bool grazing_normals = true;
 
   /// Number of cells along each side (odd, so the window has a centre cell).
   [[nodiscard]] int NumCells() const;

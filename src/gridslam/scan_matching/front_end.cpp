@@ -3,8 +3,10 @@
 #include <chrono>
 #include <cmath>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include "gridslam/common/angles.hpp"
 #include "gridslam/common/check.hpp"
 
 namespace gridslam::scan_matching {
@@ -14,6 +16,26 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The yaw correction the scan alone asks for. The match balances the scan against the prior, so
+// its correction shrinks as the prior tightens; fed back into the prior's scale that would
+// ratchet the prior ever tighter until systematic odometry errors pass unchecked. With the
+// posterior information H = H_scan + H_prior (the match's covariance includes the prior), the
+// scan's own optimum lies at H_scan^-1 H (x - prior) from the prior, to first order.
+double PriorFreeYawCorrection(const MatchResult& match, const Pose2& prior,
+                              const Eigen::Matrix3d& prior_information) {
+  const Eigen::Vector3d correction(match.T_odom_base.x() - prior.x(),
+                                   match.T_odom_base.y() - prior.y(),
+                                   NormalizeAngle(match.T_odom_base.theta() - prior.theta()));
+  const Eigen::Matrix3d posterior = match.covariance.inverse();
+  const Eigen::Matrix3d scan = posterior - prior_information;
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(scan);
+  if (!posterior.allFinite() || ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+    return correction.z();
+  }
+  const Eigen::Vector3d free = ldlt.solve(posterior * correction);
+  return free.allFinite() ? free.z() : correction.z();
 }
 
 }  // namespace
@@ -147,7 +169,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
-        odometry_noise_.Add(correction.theta(), defaults.theta);
+        odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
+                            defaults.theta);
       } else {
         step.status = FrameStatus::kFallbackRejected;
         ++stats_.fallback_rejected;

@@ -28,8 +28,11 @@ struct FrontEndOptions {
   /// multiplied by the robust RMS of the last `adaptive_window` matches' yaw corrections in units
   /// of that std, clamped to [adaptive_min_scale, 1]. Translation is not adapted.
   bool adaptive_odometry = true;
-  int adaptive_window = 200;           ///< [matched scans]
-  double adaptive_min_scale = 0.1;     ///< [-]
+  int adaptive_window = 200;  ///< [matched scans]
+  /// The floor only keeps the prior finite: the corrections include the matcher's own error, so
+  /// the scale cannot fall below what odometry and matcher disagree by. 0.1 let fr-clinic's
+  /// near-exact odometry yaw random-walk by 0.005 rad per scan (docs/front_end.md) [-].
+  double adaptive_min_scale = 0.02;
   double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
   double max_correction_theta = 0.35;  ///< [rad]
 
