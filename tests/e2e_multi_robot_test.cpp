@@ -7,6 +7,7 @@
 // robots by `gridslam split`'s code (log_split.hpp), written as logs and read back.
 #include <algorithm>
 #include <optional>
+#include <ostream>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +94,10 @@ struct OfficeRun {
   int seed = 3;
 };
 
+void PrintTo(const OfficeRun& run, std::ostream* os) {
+  *os << run.robots << " robots, " << run.duration << " s, seed " << run.seed;
+}
+
 class SimulatedRobots : public ::testing::TestWithParam<OfficeRun> {};
 
 TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
@@ -128,12 +133,16 @@ TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
   EXPECT_LT(s.between.rotation_deg.mean, 3.0 * s.within.rotation_deg.mean + 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Office, SimulatedRobots,
-                         // Seed 2, three robots: a 180-degree aliasing of two corridors, matched
-                         // by key maps 4 m apart on both paths, once joined robots 0 and 2
-                         // (docs/multi_robot.md).
-                         ::testing::Values(OfficeRun{2, 400.0, 3}, OfficeRun{3, 0.0, 3},
-                                           OfficeRun{3, 0.0, 2}));
+INSTANTIATE_TEST_SUITE_P(
+    Office, SimulatedRobots,
+    // Seed 2, three robots: a 180-degree aliasing of two corridors, matched by key maps 4 m
+    // apart on both paths, once joined robots 0 and 2 (docs/multi_robot.md).
+    ::testing::Values(OfficeRun{2, 400.0, 3}, OfficeRun{3, 0.0, 3}, OfficeRun{3, 0.0, 2}),
+    [](const ::testing::TestParamInfo<OfficeRun>& run) {
+      return std::to_string(run.param.robots) + "Robots" +
+             std::to_string(static_cast<int>(run.param.duration)) + "sSeed" +
+             std::to_string(run.param.seed);
+    });
 
 TEST(SplitRealLog, PiecesOfIntelMergeBackIntoOneMap) {
   GRIDSLAM_REQUIRE_DATA();
