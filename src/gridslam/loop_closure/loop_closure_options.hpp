@@ -54,8 +54,8 @@ struct LoopClosureOptions {
   /// neighbouring key maps, all consistently. Key maps 2 m apart still share about 85 % of a
   /// 15 m window, so their matches repeat one piece of evidence: at 2 m two key maps 4 m apart
   /// joined two simulated robots rotated by 180 degrees (office, 3 robots, seed 2); 5 m (a third
-  /// of the window) refuses that join and leaves the real-log runs unchanged (docs/multi_robot.md;
-  /// 8 m delays joins and was worse) [m].
+  /// of the window) refuses that join and changes the split real-log runs' errors by < 2 mm
+  /// (docs/multi_robot.md; 8 m delays joins and was worse) [m].
   double independent_travel = 5.0;
   /// An appearance match within one map that disagrees with the estimate is refused as aliasing
   /// when it would move the map by more than max(max_correction, max_drift * the uncertainty
