@@ -7,6 +7,7 @@
 // robots by `gridslam split`'s code (log_split.hpp), written as logs and read back.
 #include <algorithm>
 #include <optional>
+#include <ostream>
 
 #include <gtest/gtest.h>
 
@@ -87,14 +88,24 @@ void ExpectOneMap(const pipeline::MapperResult& result) {
   EXPECT_EQ(result.maps.size(), 1U);
 }
 
-class SimulatedRobots : public ::testing::TestWithParam<std::pair<int, double>> {};
+struct OfficeRun {
+  int robots = 2;
+  double duration = 0.0;  ///< 0: the whole tour.
+  int seed = 3;
+};
+
+void PrintTo(const OfficeRun& run, std::ostream* os) {
+  *os << run.robots << " robots, " << run.duration << " s, seed " << run.seed;
+}
+
+class SimulatedRobots : public ::testing::TestWithParam<OfficeRun> {};
 
 TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
-  const auto [robots, duration] = GetParam();
+  const OfficeRun run_options = GetParam();
   simulation::SimulationOptions options;
-  options.robots = robots;
-  options.duration = duration;  // 0: the whole tour
-  options.seed = 3;
+  options.robots = run_options.robots;
+  options.duration = run_options.duration;
+  options.seed = run_options.seed;
   auto world = simulation::MakeBuiltinWorld("office", options.resolution);
   ASSERT_TRUE(world.ok());
   auto simulated = simulation::Simulate(world.value(), {}, options);
@@ -122,8 +133,16 @@ TEST_P(SimulatedRobots, JoinIntoOneMapWithBetweenErrorsLikeWithin) {
   EXPECT_LT(s.between.rotation_deg.mean, 3.0 * s.within.rotation_deg.mean + 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Office, SimulatedRobots,
-                         ::testing::Values(std::pair{2, 400.0}, std::pair{3, 0.0}));
+INSTANTIATE_TEST_SUITE_P(
+    Office, SimulatedRobots,
+    // Seed 2, three robots: a 180-degree aliasing of two corridors, matched by key maps 4 m
+    // apart on both paths, once joined robots 0 and 2 (docs/multi_robot.md).
+    ::testing::Values(OfficeRun{2, 400.0, 3}, OfficeRun{3, 0.0, 3}, OfficeRun{3, 0.0, 2}),
+    [](const ::testing::TestParamInfo<OfficeRun>& run) {
+      return std::to_string(run.param.robots) + "Robots" +
+             std::to_string(static_cast<int>(run.param.duration)) + "sSeed" +
+             std::to_string(run.param.seed);
+    });
 
 TEST(SplitRealLog, PiecesOfIntelMergeBackIntoOneMap) {
   GRIDSLAM_REQUIRE_DATA();

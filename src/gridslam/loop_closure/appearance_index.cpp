@@ -9,10 +9,11 @@
 namespace gridslam::loop_closure {
 
 struct AppearanceIndex::Block {
-  cv::Mat descriptors;          ///< All rows of the block's key maps.
-  std::vector<int> owner;       ///< Key-map id of each row.
+  cv::Mat descriptors;     ///< All rows of the block's key maps.
+  std::vector<int> owner;  ///< Key-map id of each row.
   int key_maps = 0;
-  std::unique_ptr<cv::flann::Index> tree;  ///< Built when the block is full.
+  bool sealed = false;                     ///< Full: no more key maps go into it.
+  std::unique_ptr<cv::flann::Index> tree;  ///< Built when a block of float descriptors is full.
 };
 
 AppearanceIndex::AppearanceIndex(int block_size, double ratio)
@@ -20,11 +21,20 @@ AppearanceIndex::AppearanceIndex(int block_size, double ratio)
 
 AppearanceIndex::~AppearanceIndex() = default;
 
+namespace {
+
+bool Indexable(const cv::Mat& descriptors) {
+  return !descriptors.empty() && (descriptors.type() == CV_32F || descriptors.type() == CV_8U);
+}
+
+}  // namespace
+
 void AppearanceIndex::Add(int node, const cv::Mat& descriptors) {
-  if (descriptors.empty() || descriptors.type() != CV_32F) {
+  if (!Indexable(descriptors) || (type_ >= 0 && descriptors.type() != type_)) {
     return;
   }
-  if (blocks_.empty() || blocks_.back()->tree != nullptr) {
+  type_ = descriptors.type();
+  if (blocks_.empty() || blocks_.back()->sealed) {
     blocks_.push_back(std::make_unique<Block>());
   }
   Block& tail = *blocks_.back();
@@ -38,6 +48,10 @@ void AppearanceIndex::Add(int node, const cv::Mat& descriptors) {
 
 void AppearanceIndex::SealTail() {
   Block& tail = *blocks_.back();
+  tail.sealed = true;
+  if (type_ != CV_32F) {
+    return;  // binary descriptors: brute-force Hamming distances
+  }
   tail.tree = std::make_unique<cv::flann::Index>(tail.descriptors, cv::flann::KDTreeIndexParams(4),
                                                  cvflann::FLANN_DIST_L2);
 }
@@ -46,7 +60,7 @@ std::vector<AppearanceVote> AppearanceIndex::Query(const cv::Mat& descriptors, i
                                                    int min_votes,
                                                    const std::function<bool(int)>& allowed) const {
   std::vector<AppearanceVote> result;
-  if (descriptors.empty() || descriptors.type() != CV_32F || max_results <= 0) {
+  if (!Indexable(descriptors) || descriptors.type() != type_ || max_results <= 0) {
     return result;
   }
   // The k nearest stored descriptors of every query row over all blocks, among allowed key
@@ -62,6 +76,13 @@ std::vector<AppearanceVote> AppearanceIndex::Query(const cv::Mat& descriptors, i
     cv::Mat dists;
     if (block->tree != nullptr) {
       block->tree->knnSearch(descriptors, indices, dists, kk, cv::flann::SearchParams(32));
+    } else if (type_ == CV_8U) {
+      // Hamming distances, squared so that the ratio below compares distances as for L2.
+      cv::Mat hamming;
+      cv::batchDistance(descriptors, block->descriptors, hamming, CV_32S, indices, cv::NORM_HAMMING,
+                        kk);
+      hamming.convertTo(dists, CV_32F);
+      dists = dists.mul(dists);
     } else {
       cv::batchDistance(descriptors, block->descriptors, dists, CV_32F, indices, cv::NORM_L2SQR,
                         kk);

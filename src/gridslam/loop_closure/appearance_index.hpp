@@ -5,7 +5,8 @@
 // several overlapping key maps), and the most-voted key maps are returned for alignment and
 // verification. Float
 // descriptors are indexed in blocks of key maps with randomized k-d trees (FLANN, as the authors'
-// matcher); the newest, not yet full block is searched by brute force. This is what lets robots
+// matcher); the newest, not yet full block is searched by brute force. Binary descriptors (ORB,
+// AKAZE: CV_8U rows) are searched by brute force with Hamming distances. This is what lets robots
 // with unknown relative starts find each other, and a lost robot relocalize.
 #pragma once
 
@@ -31,7 +32,8 @@ class AppearanceIndex {
   AppearanceIndex(const AppearanceIndex&) = delete;
   AppearanceIndex& operator=(const AppearanceIndex&) = delete;
 
-  /// Stores the descriptors (CV_32F rows; others are ignored) of key map `node`.
+  /// Stores the descriptors of key map `node`: CV_32F (L2) or CV_8U (binary, Hamming) rows, all
+  /// of the type first stored; other types are ignored.
   void Add(int node, const cv::Mat& descriptors);
   /// The `max_results` key maps with the most votes (at least `min_votes`) among those for which
   /// `allowed(node)` holds, best first.
@@ -44,6 +46,7 @@ class AppearanceIndex {
   void SealTail();
   int block_size_;
   double ratio_;
+  int type_ = -1;  ///< OpenCV type of the stored descriptors, -1 before the first.
   std::vector<std::unique_ptr<Block>> blocks_;
 };
 

@@ -1,8 +1,8 @@
 #include "gridslam/loop_closure/appearance_index.hpp"
 
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 namespace gridslam::loop_closure {
 namespace {
@@ -39,6 +39,51 @@ TEST(AppearanceIndex, VotesForTheKeyMapThatLooksAlike) {
     const auto others = index.Query(query, 3, 1, [target](int n) { return n != target; });
     EXPECT_TRUE(others.empty() || others.front().votes <= 3);
   }
+}
+
+cv::Mat RandomBits(std::mt19937& rng, int rows) {
+  std::uniform_int_distribution<int> byte(0, 255);
+  cv::Mat d(rows, 61, CV_8U);  // AKAZE's 486-bit descriptor
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < d.cols; ++c) {
+      d.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(byte(rng));
+    }
+  }
+  return d;
+}
+
+// Binary descriptors (ORB, AKAZE) were once ignored, which silently disabled the appearance
+// search (no joins of robots) for those detectors.
+TEST(AppearanceIndex, BinaryDescriptorsVoteByHammingDistance) {
+  std::mt19937 rng(7);
+  AppearanceIndex index(/*block_size=*/8);
+  std::vector<cv::Mat> stored;
+  for (int node = 0; node < 20; ++node) {
+    stored.push_back(RandomBits(rng, 40));
+    index.Add(node, stored.back());
+  }
+  index.Add(99, RandomDescriptors(rng, 40));  // another type: ignored
+  std::bernoulli_distribution flip(0.05);
+  for (const int target : {2, 13, 19}) {
+    cv::Mat query = stored[static_cast<std::size_t>(target)].rowRange(0, 20).clone();
+    for (int r = 0; r < query.rows; ++r) {
+      for (int c = 0; c < query.cols; ++c) {
+        for (int bit = 0; bit < 8; ++bit) {
+          if (flip(rng)) {
+            query.at<std::uint8_t>(r, c) ^= static_cast<std::uint8_t>(1U << bit);
+          }
+        }
+      }
+    }
+    query.push_back(RandomBits(rng, 20));
+    const auto votes = index.Query(query, 3, 3, [](int) { return true; });
+    ASSERT_FALSE(votes.empty());
+    EXPECT_EQ(votes.front().node, target);
+    EXPECT_GE(votes.front().votes, 15);
+    const auto others = index.Query(query, 3, 1, [target](int n) { return n != target; });
+    EXPECT_TRUE(others.empty() || others.front().votes <= 3);
+  }
+  EXPECT_TRUE(index.Query(RandomDescriptors(rng, 5), 3, 1, [](int) { return true; }).empty());
 }
 
 }  // namespace

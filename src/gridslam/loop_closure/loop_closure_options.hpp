@@ -52,8 +52,12 @@ struct LoopClosureOptions {
   double appearance_spacing = 3.0;
   /// Appearance matches (no prior) count as independent evidence of each other when their key
   /// maps lie at least this far apart along both paths: an aliased place matches a run of
-  /// neighbouring key maps, all consistently [m].
-  double independent_travel = 2.0;
+  /// neighbouring key maps, all consistently. Key maps 2 m apart still share about 85 % of a
+  /// 15 m window, so their matches repeat one piece of evidence: at 2 m two key maps 4 m apart
+  /// joined two simulated robots rotated by 180 degrees (office, 3 robots, seed 2); 5 m (a third
+  /// of the window) refuses that join and changes the split real-log runs' errors by < 2 mm
+  /// (docs/multi_robot.md; 8 m delays joins and was worse) [m].
+  double independent_travel = 5.0;
   /// An appearance match within one map that disagrees with the estimate is refused as aliasing
   /// when it would move the map by more than max(max_correction, max_drift * the uncertainty
   /// distance between the key maps) [m], [-], or turn it by more than max_correction_theta [rad].

@@ -218,6 +218,11 @@ void Mapper::Impl::Join(int k, const std::vector<PendingJoin>& matches) {
   }
   robot_parent[static_cast<std::size_t>(component_b)] = component_a;
   for (const PendingJoin& m : matches) {
+    GRIDSLAM_LOG_DEBUG(
+        "join match {} (robot {}, t {:.1f}, travel {:.1f} m) - {} (robot {}, t {:.1f}, "
+        "travel {:.1f} m)",
+        m.i, At(nodes, m.i).robot, ToSeconds(At(nodes, m.i).time), At(nodes, m.i).travel, m.k,
+        At(nodes, m.k).robot, ToSeconds(At(nodes, m.k).time), At(nodes, m.k).travel);
     EdgeRecord edge;
     edge.from = m.i;
     edge.to = m.k;
