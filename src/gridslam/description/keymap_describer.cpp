@@ -95,11 +95,10 @@ KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const
   description.seconds_distance = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  const cv::Mat& detect_on =
-      options_.detect_image == "grid" ? images.grid : images.distance;
+  const cv::Mat& detect_on = options_.detect_image == "grid" ? images.grid : images.distance;
   const cv::Mat& describe_on = options_.descriptor_image == "obstacle" ? images.obstacle
                                : options_.descriptor_image == "grid"   ? images.grid
-                                                                        : images.distance;
+                                                                       : images.distance;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   // The margin in cells, rounded up to a multiple of SURF's coarsest sampling step so that every

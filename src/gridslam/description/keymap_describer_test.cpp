@@ -1,10 +1,10 @@
 #include "gridslam/description/keymap_describer.hpp"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <numbers>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/matching/align.hpp"
@@ -96,8 +96,7 @@ TEST(KeyMapDescriber, AlignmentRecoversKnownTransform) {
     ASSERT_TRUE(result.accepted) << angle_deg << " deg: " << ToString(result.reason);
     const Pose2 expected = T_b_walls.Inverse();  // T_a_b with a = walls frame
     EXPECT_LT((result.T_a_b.translation() - expected.translation()).norm(), 0.05) << angle_deg;
-    EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - expected.theta())), 0.01)
-        << angle_deg;
+    EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - expected.theta())), 0.01) << angle_deg;
   }
 }
 

@@ -18,6 +18,17 @@ cv::Mat RandomDescriptors(std::mt19937& rng, int rows) {
   return d;
 }
 
+// The query (half of the target's descriptors, perturbed, plus unrelated ones) votes for the
+// target; excluding it, no key map gathers more than a few chance votes.
+void ExpectVotesFor(const AppearanceIndex& index, const cv::Mat& query, int target) {
+  const auto votes = index.Query(query, 3, 3, [](int) { return true; });
+  ASSERT_FALSE(votes.empty());
+  EXPECT_EQ(votes.front().node, target);
+  EXPECT_GE(votes.front().votes, 15);
+  const auto others = index.Query(query, 3, 1, [target](int n) { return n != target; });
+  EXPECT_TRUE(others.empty() || others.front().votes <= 3);
+}
+
 TEST(AppearanceIndex, VotesForTheKeyMapThatLooksAlike) {
   std::mt19937 rng(42);
   AppearanceIndex index(/*block_size=*/8);
@@ -31,13 +42,7 @@ TEST(AppearanceIndex, VotesForTheKeyMapThatLooksAlike) {
     cv::Mat query = stored[static_cast<std::size_t>(target)].rowRange(0, 20).clone();
     query += RandomDescriptors(rng, 20) * 0.05;
     query.push_back(RandomDescriptors(rng, 20));
-    const auto votes = index.Query(query, 3, 3, [](int) { return true; });
-    ASSERT_FALSE(votes.empty());
-    EXPECT_EQ(votes.front().node, target);
-    EXPECT_GE(votes.front().votes, 15);
-    // Excluding the target, no key map gathers more than a few chance votes.
-    const auto others = index.Query(query, 3, 1, [target](int n) { return n != target; });
-    EXPECT_TRUE(others.empty() || others.front().votes <= 3);
+    ExpectVotesFor(index, query, target);
   }
 }
 
@@ -76,12 +81,7 @@ TEST(AppearanceIndex, BinaryDescriptorsVoteByHammingDistance) {
       }
     }
     query.push_back(RandomBits(rng, 20));
-    const auto votes = index.Query(query, 3, 3, [](int) { return true; });
-    ASSERT_FALSE(votes.empty());
-    EXPECT_EQ(votes.front().node, target);
-    EXPECT_GE(votes.front().votes, 15);
-    const auto others = index.Query(query, 3, 1, [target](int n) { return n != target; });
-    EXPECT_TRUE(others.empty() || others.front().votes <= 3);
+    ExpectVotesFor(index, query, target);
   }
   EXPECT_TRUE(index.Query(RandomDescriptors(rng, 5), 3, 1, [](int) { return true; }).empty());
 }

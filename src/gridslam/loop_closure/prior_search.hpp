@@ -27,14 +27,14 @@ struct PriorSearchOptions {
   /// Half-width of the translation window: this fraction of the uncertainty distance between
   /// the key maps (graph path length, a drift rate) ... [m/m]
   double window_per_m = 0.02;
-  double max_window_xy = 3.0;    ///< ... capped here [m].
-  double min_window_xy = 0.5;    ///< Smaller windows: the refinement alone is used [m].
-  double window_theta = 0.1;     ///< Half-width of the rotation window [rad].
-  double linear_step = 0.2;      ///< Translation step of the grid (rounded to cells) [m].
-  double angular_step = 0.035;   ///< Rotation step [rad].
-  double truncation = 0.3;       ///< Distances beyond this score 0 [m].
-  int max_points = 400;          ///< b's points used at most (regular subsample) [-].
-  double min_score = 0.3;        ///< Best scores below this: no match [-].
+  double max_window_xy = 3.0;   ///< ... capped here [m].
+  double min_window_xy = 0.5;   ///< Smaller windows: the refinement alone is used [m].
+  double window_theta = 0.1;    ///< Half-width of the rotation window [rad].
+  double linear_step = 0.2;     ///< Translation step of the grid (rounded to cells) [m].
+  double angular_step = 0.035;  ///< Rotation step [rad].
+  double truncation = 0.3;      ///< Distances beyond this score 0 [m].
+  int max_points = 400;         ///< b's points used at most (regular subsample) [-].
+  double min_score = 0.3;       ///< Best scores below this: no match [-].
   /// The best score among poses farther than distinct_distance from the best must stay below
   /// max_ambiguity times the best [m], [-].
   double distinct_distance = 0.5;

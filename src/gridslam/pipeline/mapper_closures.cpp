@@ -28,9 +28,8 @@ std::optional<Pose2> Mapper::Impl::TryAlign(int i, int k, const Pose2* prior,
   ++stats.verified;
   Pose2 T_a_b = result.T_a_b;
   if (options.loop_closure.refinement.enabled) {
-    const loop_closure::RefinementResult refined =
-        loop_closure::RefineOnDistanceField(RefinementPoints(b), a.description.distance, T_a_b,
-                                          options.loop_closure.refinement);
+    const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
+        RefinementPoints(b), a.description.distance, T_a_b, options.loop_closure.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
