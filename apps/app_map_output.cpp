@@ -93,8 +93,8 @@ Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& res
     const OccupancyImage image = fusion::ToOccupancy(result.maps[c], fusion);
     GRIDSLAM_RETURN_IF_ERROR(io::WriteMap((out / (stem + ".yaml")).string(), stem + ".pgm", image));
     GRIDSLAM_RETURN_IF_ERROR(io::WriteMapImage((out / (stem + ".png")).string(), image));
-    GRIDSLAM_RETURN_IF_ERROR(
-        WriteGraphPicture((out / (stem + "_graph.png")).string(), image, result, static_cast<int>(c)));
+    GRIDSLAM_RETURN_IF_ERROR(WriteGraphPicture((out / (stem + "_graph.png")).string(), image,
+                                               result, static_cast<int>(c)));
     nlohmann::json robots_in = nlohmann::json::array();
     for (std::size_t r = 0; r < robots.size(); ++r) {
       if (result.component_of_robot[r] == static_cast<int>(c)) {

@@ -46,6 +46,6 @@ std::vector<CommandSpec>& Commands();
 
 #define GRIDSLAM_CONCAT_INNER(a, b) a##b
 #define GRIDSLAM_CONCAT(a, b) GRIDSLAM_CONCAT_INNER(a, b)
-#define GRIDSLAM_REGISTER_COMMAND(...)                                   \
+#define GRIDSLAM_REGISTER_COMMAND(...)                                       \
   static const int GRIDSLAM_CONCAT(gridslam_command_registered_, __LINE__) = \
       ::gridslam::app::RegisterCommand(__VA_ARGS__)

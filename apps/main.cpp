@@ -6,8 +6,9 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include "command.hpp"
 #include "gridslam/io/options_yaml.hpp"
+
+#include "command.hpp"
 
 namespace gridslam::app {
 

@@ -1,8 +1,8 @@
 #include "gridslam/common/angles.hpp"
 
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 namespace gridslam {
 namespace {

@@ -55,9 +55,9 @@ class [[nodiscard]] Status {
 template <typename T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : data_(std::move(value)) {}        // NOLINT(google-explicit-constructor)
-  Result(Error error) : data_(std::move(error)) {}    // NOLINT(google-explicit-constructor)
-  Result(Status status) : data_(status.error()) {}    // NOLINT(google-explicit-constructor)
+  Result(T value) : data_(std::move(value)) {}      // NOLINT(google-explicit-constructor)
+  Result(Error error) : data_(std::move(error)) {}  // NOLINT(google-explicit-constructor)
+  Result(Status status) : data_(status.error()) {}  // NOLINT(google-explicit-constructor)
   [[nodiscard]] bool ok() const { return std::holds_alternative<T>(data_); }
   [[nodiscard]] const T& value() const& {
     GRIDSLAM_CHECK(ok()) << "value() on an error Result: " << std::get<Error>(data_).ToString();
@@ -84,10 +84,10 @@ class [[nodiscard]] Result {
 }  // namespace gridslam
 
 /// Returns the error of a Status or Result expression from the enclosing function.
-#define GRIDSLAM_RETURN_IF_ERROR(expr)                  \
-  do {                                                  \
-    auto gridslam_status_ = (expr);                     \
-    if (!gridslam_status_.ok()) {                       \
-      return gridslam_status_.error();                  \
-    }                                                   \
+#define GRIDSLAM_RETURN_IF_ERROR(expr) \
+  do {                                 \
+    auto gridslam_status_ = (expr);    \
+    if (!gridslam_status_.ok()) {      \
+      return gridslam_status_.error(); \
+    }                                  \
   } while (false)

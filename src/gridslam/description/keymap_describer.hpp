@@ -42,9 +42,9 @@ struct KeyMapDescription {
 
 /// The 8-bit images of a key map (for people and for the detectors).
 struct KeyMapImages {
-  cv::Mat distance;  ///< Clamped distance image, CV_8U (obstacles black).
-  cv::Mat obstacle;  ///< Binary obstacle image, CV_8U: obstacles 0, the rest 255.
-  cv::Mat grid;      ///< Occupancy image, CV_8U: occupied 0, free 255, unknown 128.
+  cv::Mat distance;        ///< Clamped distance image, CV_8U (obstacles black).
+  cv::Mat obstacle;        ///< Binary obstacle image, CV_8U: obstacles 0, the rest 255.
+  cv::Mat grid;            ///< Occupancy image, CV_8U: occupied 0, free 255, unknown 128.
   cv::Mat distance_cells;  ///< Distance to the nearest obstacle [cells], CV_32F (+inf if none).
 };
 

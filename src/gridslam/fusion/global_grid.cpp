@@ -24,8 +24,8 @@ Status FusionOptions::Validate() const {
                                    "fusion.clamp_probability in (0.5, 1)"));
   GRIDSLAM_RETURN_IF_ERROR(Require(free_probability < occupied_probability,
                                    "fusion.free_probability < occupied_probability"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(min_motion >= 0.0 && min_rotation >= 0.0,
-                                   "fusion.min_motion, min_rotation >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(min_motion >= 0.0 && min_rotation >= 0.0, "fusion.min_motion, min_rotation >= 0"));
   return Require(margin >= 0.0, "fusion.margin >= 0");
 }
 

@@ -17,15 +17,15 @@
 namespace gridslam::fusion {
 
 struct FusionOptions {
-  std::string method = "scans";   ///< "scans" (re-insert scans) or "nearest" (paper's Voronoi).
-  double resolution = 0.05;       ///< Cell side of the global grid [m].
-  double max_range = 30.0;        ///< Returns farther than this are not inserted [m].
-  double hit_probability = 0.7;   ///< Inverse sensor model at a beam's end cell [-].
-  double miss_probability = 0.4;  ///< Inverse sensor model along the beam [-].
+  std::string method = "scans";     ///< "scans" (re-insert scans) or "nearest" (paper's Voronoi).
+  double resolution = 0.05;         ///< Cell side of the global grid [m].
+  double max_range = 30.0;          ///< Returns farther than this are not inserted [m].
+  double hit_probability = 0.7;     ///< Inverse sensor model at a beam's end cell [-].
+  double miss_probability = 0.4;    ///< Inverse sensor model along the beam [-].
   double clamp_probability = 0.97;  ///< Log-odds clamp, symmetric [-].
   double occupied_probability = 0.65;  ///< Output: occupied above this [-].
   double free_probability = 0.35;      ///< Output: free below this [-].
-  double min_motion = 0.05;  ///< A scan is inserted after this much travel since the last [m]...
+  double min_motion = 0.05;    ///< A scan is inserted after this much travel since the last [m]...
   double min_rotation = 0.05;  ///< ... or this much rotation [rad].
   double margin = 1.0;         ///< Border around the observed area [m].
 

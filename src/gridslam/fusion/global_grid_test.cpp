@@ -1,9 +1,9 @@
 #include "gridslam/fusion/global_grid.hpp"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <numbers>
+
+#include <gtest/gtest.h>
 
 namespace gridslam::fusion {
 namespace {
@@ -16,7 +16,8 @@ LaserScan WallScan() {
   scan.range_min = 0.0;
   scan.range_max = 80.0;
   for (int k = 0; k <= 180; ++k) {
-    scan.ranges.push_back(static_cast<float>(2.0 / std::cos(scan.Angle(static_cast<std::size_t>(k)))));
+    scan.ranges.push_back(
+        static_cast<float>(2.0 / std::cos(scan.Angle(static_cast<std::size_t>(k)))));
   }
   return scan;
 }

@@ -12,8 +12,7 @@ namespace gridslam {
 class Pose2 {
  public:
   Pose2() = default;
-  Pose2(double x, double y, double theta)
-      : translation_(x, y), theta_(NormalizeAngle(theta)) {}
+  Pose2(double x, double y, double theta) : translation_(x, y), theta_(NormalizeAngle(theta)) {}
   Pose2(const Eigen::Vector2d& translation, double theta)
       : translation_(translation), theta_(NormalizeAngle(theta)) {}
 

@@ -1,8 +1,8 @@
 #include "gridslam/geometry/pose2.hpp"
 
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 namespace gridslam {
 namespace {
@@ -48,7 +48,8 @@ TEST(Pose2, ExpLogRoundTripIncludingSmallAngles) {
   }
   EXPECT_TRUE(IsApprox(Pose2::Exp(Eigen::Vector3d(1.0, 0.0, 0.0)), Pose2(1.0, 0.0, 0.0)));
   // A quarter turn while moving pi/2 forward ends at (1, 1).
-  const Pose2 quarter = Pose2::Exp(Eigen::Vector3d(std::numbers::pi / 2, 0.0, std::numbers::pi / 2));
+  const Pose2 quarter =
+      Pose2::Exp(Eigen::Vector3d(std::numbers::pi / 2, 0.0, std::numbers::pi / 2));
   EXPECT_TRUE(IsApprox(quarter, Pose2(1.0, 1.0, std::numbers::pi / 2), 1e-12, 1e-12));
 }
 

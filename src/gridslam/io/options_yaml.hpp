@@ -36,8 +36,11 @@ class YamlReadVisitor {
         field = node_[key].template as<T>();
       }
     } catch (const YAML::Exception& e) {
-      status_ = InvalidInput("option '" + Qualified(key) + "': cannot read a value of the right "
-                             "type (" + e.msg + ")", file_, node_[key].Mark().line + 1);
+      status_ = InvalidInput("option '" + Qualified(key) +
+                                 "': cannot read a value of the right "
+                                 "type (" +
+                                 e.msg + ")",
+                             file_, node_[key].Mark().line + 1);
     }
   }
 

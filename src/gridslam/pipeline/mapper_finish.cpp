@@ -118,7 +118,8 @@ MapperResult Mapper::Impl::Finish() {
     if (options.fusion.method == "nearest") {
       std::vector<fusion::PosedKeyMap> posed;
       for (const Node& node : nodes) {
-        if (result.component_of_robot[static_cast<std::size_t>(node.robot)] == static_cast<int>(c)) {
+        if (result.component_of_robot[static_cast<std::size_t>(node.robot)] ==
+            static_cast<int>(c)) {
           posed.push_back({node.estimate, &node.key_map});
         }
       }
@@ -130,7 +131,8 @@ MapperResult Mapper::Impl::Finish() {
           continue;
         }
         for (const FusionScan& f : robots[r].fusion_scans) {
-          posed.push_back({result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
+          posed.push_back(
+              {result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
         }
       }
       result.maps.push_back(fusion::FuseScans(posed, options.fusion));

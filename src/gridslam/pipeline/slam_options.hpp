@@ -6,14 +6,14 @@
 
 #include "gridslam/benchmark/align_eval_options.hpp"
 #include "gridslam/common/options.hpp"
-#include "gridslam/eval/eval_options.hpp"
 #include "gridslam/description/description_options.hpp"
+#include "gridslam/eval/eval_options.hpp"
 #include "gridslam/fusion/global_grid.hpp"
-#include "gridslam/loop_closure/loop_closure_options.hpp"
-#include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/io/carmen_options.hpp"
+#include "gridslam/loop_closure/loop_closure_options.hpp"
 #include "gridslam/matching/align.hpp"
 #include "gridslam/multi_robot/log_split.hpp"
+#include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/simulation/simulation_options.hpp"
@@ -21,18 +21,18 @@
 namespace gridslam {
 
 struct SlamOptions {
-  io::CarmenOptions log;  ///< Reading CARMEN logs.
-  scan_matching::FrontEndOptions front_end;  ///< Scan matching, local map, key maps.
+  io::CarmenOptions log;                        ///< Reading CARMEN logs.
+  scan_matching::FrontEndOptions front_end;     ///< Scan matching, local map, key maps.
   description::DescriptionOptions description;  ///< Key-map description (DT + SURF).
-  matching::AlignOptions matching;  ///< Key-map alignment (matching, RANSAC, verification).
-  eval::EvalOptions eval;  ///< Benchmark relation metric.
+  matching::AlignOptions matching;         ///< Key-map alignment (matching, RANSAC, verification).
+  eval::EvalOptions eval;                  ///< Benchmark relation metric.
   pose_graph::OptimizerOptions optimizer;  ///< Pose-graph optimization.
   loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
-  pipeline::GraphOptions graph;  ///< Building and optimizing the key-map graph.
-  fusion::FusionOptions fusion;  ///< Global map fusion.
-  simulation::SimulationOptions simulation;  ///< `gridslam simulate`.
-  benchmark::AlignEvalOptions align_eval;  ///< `gridslam align-eval` (DESIGN.md 3.2).
-  multi_robot::SplitOptions split;  ///< `gridslam split` (one log as several robots).
+  pipeline::GraphOptions graph;                   ///< Building and optimizing the key-map graph.
+  fusion::FusionOptions fusion;                   ///< Global map fusion.
+  simulation::SimulationOptions simulation;       ///< `gridslam simulate`.
+  benchmark::AlignEvalOptions align_eval;         ///< `gridslam align-eval` (DESIGN.md 3.2).
+  multi_robot::SplitOptions split;                ///< `gridslam split` (one log as several robots).
 
   template <class V>
   void Visit(V& v) {

@@ -34,13 +34,13 @@ struct LaserScan {
 
 /// One laser scan with its odometry, as delivered by a log reader or a robot.
 struct Frame {
-  Time time;             ///< The scan's printed timestamp: its identity in outputs and relations.
-  Time corrected_time;   ///< Timestamp repaired for ordering/interpolation (== time if not needed).
-  Pose2 T_odom_base;     ///< Odometry pose of the robot centre at the scan.
-  Pose2 T_base_laser;    ///< Laser mounting on the robot.
+  Time time;            ///< The scan's printed timestamp: its identity in outputs and relations.
+  Time corrected_time;  ///< Timestamp repaired for ordering/interpolation (== time if not needed).
+  Pose2 T_odom_base;    ///< Odometry pose of the robot centre at the scan.
+  Pose2 T_base_laser;   ///< Laser mounting on the robot.
   LaserScan scan;
   std::optional<Pose2> T_world_base_true;  ///< Ground truth, when the log has it (TRUEPOS).
-  long source_line = 0;  ///< Line of the log it came from (for messages).
+  long source_line = 0;                    ///< Line of the log it came from (for messages).
 
   [[nodiscard]] Pose2 T_odom_laser() const { return T_odom_base * T_base_laser; }
 };

@@ -1,9 +1,9 @@
 #include "gridslam/scan/laser_scan.hpp"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <limits>
+
+#include <gtest/gtest.h>
 
 namespace gridslam {
 namespace {

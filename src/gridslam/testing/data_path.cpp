@@ -24,8 +24,8 @@ std::filesystem::path FixtureDir() {
 
 std::filesystem::path MakeTempDir(const std::string& name) {
   std::random_device rd;
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("gridslam_" + name + "_" + std::to_string(rd()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("gridslam_" + name + "_" + std::to_string(rd()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

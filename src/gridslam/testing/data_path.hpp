@@ -18,10 +18,10 @@ std::filesystem::path MakeTempDir(const std::string& name);
 
 }  // namespace gridslam::testing
 
-#define GRIDSLAM_REQUIRE_DATA()                                                              \
-  do {                                                                                       \
-    if (!::gridslam::testing::HaveData()) {                                                  \
-      GTEST_SKIP() << "shared datasets not found at " << ::gridslam::testing::DataDir()      \
-                   << " (set GRIDSLAM_DATA)";                                                \
-    }                                                                                        \
+#define GRIDSLAM_REQUIRE_DATA()                                                         \
+  do {                                                                                  \
+    if (!::gridslam::testing::HaveData()) {                                             \
+      GTEST_SKIP() << "shared datasets not found at " << ::gridslam::testing::DataDir() \
+                   << " (set GRIDSLAM_DATA)";                                           \
+    }                                                                                   \
   } while (false)
