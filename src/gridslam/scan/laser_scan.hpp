@@ -37,6 +37,9 @@ struct Frame {
   Time time;            ///< The scan's printed timestamp: its identity in outputs and relations.
   Time corrected_time;  ///< Timestamp repaired for ordering/interpolation (== time if not needed).
   Pose2 T_odom_base;    ///< Odometry pose of the robot centre at the scan.
+  /// False when the recording has no odometry: T_odom_base is then a placeholder (identity) and
+  /// the front end predicts the motion from the scans alone.
+  bool has_odometry = true;
   Pose2 T_base_laser;   ///< Laser mounting on the robot.
   LaserScan scan;
   std::optional<Pose2> T_world_base_true;  ///< Ground truth, when the log has it (TRUEPOS).
