@@ -1,4 +1,4 @@
-// gridslam: 2D laser graph-SLAM from the command line (DESIGN.md §2).
+// gridslam: 2D laser graph-SLAM from the command line (docs/design.md §2).
 #include <cstdio>
 #include <exception>
 #include <iostream>
