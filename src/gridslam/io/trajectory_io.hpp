@@ -1,4 +1,4 @@
-// Trajectory files (docs/formats.md §3): one stamped pose per line, either the project's plain
+// Trajectory files (docs/formats.md §7): one stamped pose per line, either the project's plain
 // "timestamp x y theta" or TUM's "timestamp x y z qx qy qz qw" (z = 0, yaw-only quaternion). The
 // timestamp is printed with 6 decimals exactly as parsed (common/time.hpp), poses at full
 // precision (%.17g) so a write/read round trip is lossless. Which frame a trajectory is in is
