@@ -178,7 +178,7 @@ RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<MapArgs>();
   sub.add_option("LOG", args->logs, "CARMEN log(s), one per robot (optionally gzip-compressed)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   return [args](AppContext& ctx) { return RunMap(*args, ctx); };
 }
 
