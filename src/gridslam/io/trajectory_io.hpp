@@ -27,7 +27,9 @@ StampedPose TrajectoryEntry(const Frame& frame, const Pose2& T_world_base,
 /// Writes to a temporary file beside `path` and renames it, so no half file is left on failure.
 Status WriteTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
 
-/// Writes TUM lines "timestamp x y z qx qy qz qw" with z = 0 and the yaw quaternion.
+/// Writes TUM lines "timestamp x y z qx qy qz qw" with z = 0 and the yaw quaternion, sorted by
+/// timestamp (stable), as TUM readers such as evo require; the plain format keeps the given order
+/// (a log's own stamps may go backwards, and the benchmark relations are keyed on them).
 Status WriteTrajectoryTum(const std::string& path, const std::vector<StampedPose>& poses);
 
 /// Writes TUM if `path` ends in ".tum", else the plain format.
