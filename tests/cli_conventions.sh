@@ -2,7 +2,8 @@
 # CLI test of the command-line conventions (docs/guide.md §5): --version, --set, --config in every
 # command's help, a mistyped command, usage errors exit 2 (an -o that is not a folder), validation
 # errors naming the file and line or the --set, stale outputs of an earlier map run removed,
-# report.json's schema_version, trajectory.tum in ascending time, progress only on a terminal.
+# report.json's schema_version, trajectory.tum in ascending time, progress only on a terminal,
+# pictures with axes.
 set -euo pipefail
 bin="$1"
 tmp=$(mktemp -d)
@@ -86,6 +87,16 @@ grep -q "% of the log" "$tmp/err.txt" && fail "progress printed when stderr is n
 grep -q '"schema_version": 1' "$out/report.json" || fail "no schema_version"
 sort -c -s -g -k1,1 "$out/trajectory.tum" || fail "trajectory.tum not ascending"
 [ "$(wc -l < "$out/trajectory.tum")" -eq "$(wc -l < "$out/trajectory.txt")" ] || fail "tum/txt lines"
+
+# map.png and map_graph.png carry axes and a scale bar in margins around the map: wider and
+# taller than map.pgm by the margins (56 + 12, 8 + 34 pixels).
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4, $5*16777216+$6*65536+$7*256+$8}'; }
+read -r pgm_w pgm_h < <(head -c 64 "$out/map.pgm" | sed -n 3p)
+for png in map.png map_graph.png; do
+  read -r w h < <(png_size "$out/$png")
+  [ "$w" -eq $((pgm_w + 68)) ] && [ "$h" -eq $((pgm_h + 42)) ] ||
+    fail "$png is ${w}x${h}, map.pgm ${pgm_w}x${pgm_h}"
+done
 
 # On a terminal (script(1) provides one): a progress line with share, elapsed, ETA, scans/s.
 if command -v script > /dev/null; then
