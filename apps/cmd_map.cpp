@@ -13,10 +13,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 
+#include "app_align_map.hpp"
 #include "app_map_output.hpp"
 #include "command.hpp"
 #include <unistd.h>
@@ -73,6 +75,7 @@ void PrintProgress(double fraction, double elapsed, const pipeline::MapperStats&
 struct MapArgs {
   std::vector<std::string> logs;
   std::string output;
+  bool align_map = false;
 };
 
 nlohmann::json StatsJson(const pipeline::MapperStats& s) {
@@ -188,10 +191,23 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
+  nlohmann::json rotations = nlohmann::json::array();
+  if (args.align_map) {
+    const auto occupied =
+        static_cast<float>(ProbabilityToLogOdds(context.options.fusion.occupied_probability));
+    for (std::size_t c = 0; c < result.maps.size(); ++c) {
+      const double angle = DominantWallAngle(result.maps[c], occupied);
+      RotateMapFrame(result, static_cast<int>(c), angle, context.options.fusion.margin);
+      rotations.push_back(-angle);
+    }
+  }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
   nlohmann::json report = StatsJson(result.stats);
   report["schema_version"] = kReportSchemaVersion;
+  if (args.align_map) {
+    report["map_rotation_rad"] = rotations;  // per map: rotation applied to its frame
+  }
   double duration = 0.0;
   nlohmann::json logs = nlohmann::json::array();
   for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -242,6 +258,9 @@ RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("LOG", args->logs, "CARMEN log(s), one per robot (optionally gzip-compressed)")
       ->required();
   sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
+  sub.add_flag("--align-map", args->align_map,
+               "Rotate the map frame so that the dominant wall directions lie along its axes "
+               "(default: the first key map's frame)");
   return [args](AppContext& ctx) { return RunMap(*args, ctx); };
 }
 
