@@ -1,5 +1,5 @@
 // `gridslam eval RELATIONS TRAJECTORY [--json] [--min-dt S] [--max-dt S] [--tolerance S]`: the
-// SLAM benchmark's relation metric (docs/design.md §2, §3.1) of a trajectory file (plain or TUM).
+// SLAM benchmark's relation metric (DESIGN.md §2, §3.1) of a trajectory file (plain or TUM).
 // Several robots (issue 8): `gridslam eval RELATIONS TRAJ_0 TRAJ_1 ... [--index index.txt]`
 // scores relations within and between robots of a merged map (trajectories in one common
 // frame): each timestamp is looked up in the trajectory of the robot index.txt gives it, or,

@@ -1,5 +1,5 @@
-// `gridslam map LOG [LOG ...] -o DIR [--config FILE]`: the whole system (docs/design.md §1, §2).
-// Each LOG is one robot with its own odometry frame and unknown start; their frames are processed
+// `gridslam map LOG [LOG ...] -o DIR [--config FILE]`: the whole system (DESIGN.md §1, §2). Each
+// LOG is one robot with its own odometry frame and unknown start; their frames are processed
 // interleaved by time, as a team would deliver them. Writes the map(s), the corrected
 // trajectories, the optimized graph, the effective configuration and a report into DIR.
 #include <algorithm>

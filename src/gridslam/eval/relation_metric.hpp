@@ -1,5 +1,5 @@
-// The SLAM benchmark's relation metric (Kümmerle et al. 2009; docs/design.md §3.1, docs/formats.md
-// §4). For each relation (t1, t2, δ*) the estimate's poses X_t1, X_t2 are the trajectory poses with
+// The SLAM benchmark's relation metric (Kümmerle et al. 2009; DESIGN.md §3.1, FORMATS.md §4).
+// For each relation (t1, t2, δ*) the estimate's poses X_t1, X_t2 are the trajectory poses with
 // the nearest timestamps (within EvalOptions::tolerance), δ = X_t1⁻¹ X_t2, and the error is
 // ε = δ* ⊖ δ = δ⁻¹ δ*. Its translational part |t(ε)| = |t(δ*) - t(δ)| is the distance between
 // the true and estimated positions of the pose at t2, both expressed in the frame of the pose at

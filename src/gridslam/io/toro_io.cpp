@@ -59,7 +59,7 @@ Result<pose_graph::PoseGraph> ParseToro(const std::string& text, const std::stri
       double v[9];
       GRIDSLAM_RETURN_IF_ERROR(
           internal::ParseNumbers(tokens, 3, 9, kEdgeFields, file, line_number, v));
-      // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (docs/formats.md §3).
+      // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (FORMATS.md §3).
       Eigen::Matrix3d m;
       m << v[3], v[4], v[7], v[4], v[5], v[8], v[7], v[8], v[6];
       // GTSAM's sanity check: a zero on the diagonal means another order (or a bad file).

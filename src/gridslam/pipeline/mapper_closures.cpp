@@ -1,4 +1,4 @@
-// Loop closures of the Mapper (docs/design.md §1.6): prior-based candidates gated by the current
+// Loop closures of the Mapper (DESIGN.md §1.6): prior-based candidates gated by the current
 // estimate (the appearance search across robots and their joins are in mapper_join.cpp).
 #include <algorithm>
 #include <cmath>
@@ -179,7 +179,7 @@ bool Mapper::Impl::SearchPriorCandidates(int k) {
     if (!in_gate) {
       // A closure outside the gate is kept; once enough recent gated closures agree with each
       // other (the loops they form with the graph close), the estimate is what was wrong, and
-      // they are accepted together (docs/design.md §1.6: pairwise consistency of several closures).
+      // they are accepted together (DESIGN.md 1.6: pairwise consistency of several closures).
       for (const PendingJoin& g : gated) {
         if (g.k != k && k - g.k <= lc.gated_window &&
             Consistent(group.front(), g, nodes, lc.pairwise_xy, lc.pairwise_theta)) {

@@ -1,14 +1,14 @@
-// The global appearance search of the Mapper (docs/design.md §1.6, §1.9; issues 7, 8): a new key
-// map is looked up in every robot's key maps, its own robot's included (each robot has its own
-// index, mapper.cpp), with no prior: a robot whose drift outgrew the prior-based candidate search
-// still closes its loop, and robots with unknown relative starts find each other. Then the join of
-// two robots' graphs once min_join_matches mutually consistent verified matches exist (before that
-// each graph is anchored on its own: Howard et al. 2006's manifold, where the shared places simply
-// exist twice), a catch-up search that links the key maps the two robots built before they met, and
-// appearance matches within one map (one robot's or joined robots'), which keep their maps tied
-// together where the estimate has drifted too far for the prior-based candidates of
-// mapper_closures.cpp: a match that agrees with the estimate is a loop edge at once, one that does
-// not waits for independent matches that agree with it.
+// The global appearance search of the Mapper (DESIGN.md §1.6, §1.9; issues 7, 8): a new key map
+// is looked up in every robot's key maps, its own robot's included (each robot has its own index,
+// mapper.cpp), with no prior: a robot whose drift outgrew the prior-based candidate search still
+// closes its loop, and robots with unknown relative starts find each other. Then the
+// join of two robots' graphs once min_join_matches mutually consistent verified matches exist
+// (before that each graph is anchored on its own: Howard et al. 2006's manifold, where the
+// shared places simply exist twice), a catch-up search that links the key maps the two robots
+// built before they met, and appearance matches within one map (one robot's or joined robots'),
+// which keep their maps tied together where the estimate has drifted too far
+// for the prior-based candidates of mapper_closures.cpp: a match that agrees with the estimate
+// is a loop edge at once, one that does not waits for independent matches that agree with it.
 #include <algorithm>
 #include <cmath>
 
@@ -157,8 +157,7 @@ bool Mapper::Impl::AcceptAcrossRobots(int i, int k, const Pose2& T_i_k,
     return false;
   }
   // The estimate disagrees: accept only with independent matches between the same two robots
-  // that agree with this one (then the estimate was wrong; docs/design.md §1.6 pairwise
-  // consistency).
+  // that agree with this one (then the estimate was wrong; DESIGN.md 1.6 pairwise consistency).
   const PendingJoin match{i, k, T_i_k};
   const auto robot_of = [&](int id) { return At(nodes, id).robot; };
   std::vector<std::size_t> support;

@@ -1,4 +1,4 @@
-// Shared machinery of the g2o (docs/formats.md §2) and TORO (§3) graph readers: whitespace
+// Shared machinery of the g2o (FORMATS.md §2) and TORO (§3) graph readers: whitespace
 // tokenizing, strict number parsing with file:line:field errors, and assembling a PoseGraph from
 // declared vertices, edges and FIX lines (vertices referenced only by edges are created at the
 // origin and reported, so that edges-only files such as manhattan.g2o can be chained later).
