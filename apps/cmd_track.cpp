@@ -157,7 +157,7 @@ RunFunction SetupTrack(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<TrackArgs>();
   sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_flag("--no-match", args->no_match,
                "Do not match scans: the trajectory is the raw odometry (baseline)");
   return [args](AppContext& ctx) { return RunTrack(*args, ctx); };
