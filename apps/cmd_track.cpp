@@ -56,7 +56,7 @@ nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
        {{"doubtful", s.odometry_doubtful},
         {"missing", s.odometry_missing},
         {"wide_searches", s.wide_searches},
-        {"constant_velocity_wins", s.constant_velocity_wins}}},
+        {"overruled", s.odometry_overruled}}},
       {"insertions", s.insertions},
       {"key_maps", s.key_maps},
       {"distance_field", {{"rebuilds", s.field_rebuilds}, {"tile_updates", s.field_tile_updates}}}};

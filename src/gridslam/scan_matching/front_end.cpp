@@ -8,6 +8,7 @@
 
 #include "gridslam/common/angles.hpp"
 #include "gridslam/common/check.hpp"
+#include "gridslam/common/logging.hpp"
 #include "gridslam/scan_matching/correlative_search.hpp"
 
 namespace gridslam::scan_matching {
@@ -144,53 +145,65 @@ bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
 
 MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                   const MotionPrediction& prediction,
-                                                  const Eigen::Matrix3d& prior_information,
+                                                  const Eigen::Matrix3d& velocity_information,
+                                                  const Eigen::Matrix3d& odometry_information,
                                                   FrontEndStep* step) {
+  const double good = options_.matcher.good_score;
   const Pose2& centre = prediction.constant_velocity;
-  MatchResult best = matcher_.Match(*window_, field_, points, centre, prior_information);
+  MatchResult best;
+  MatchResult from_odometry;
   if (prediction.check == OdometryCheck::kDoubtful) {
-    // The odometry may still be right (a real manoeuvre, or a false alarm): matched with its
-    // own prior, it wins when it scores clearly better, or when both converge to the same pose.
-    // Only when the scan tells two different poses apart no better than that does the
-    // plausible constant-velocity prediction win.
-    const PriorSigmas sigmas = DefaultPriorSigmas(prediction.odometry_increment);
-    const MatchResult odometry =
-        matcher_.Match(*window_, field_, points, prediction.odometry,
-                       PriorInformation(sigmas, prediction.odometry, true));
-    const Pose2 difference = Between(best.T_odom_base, odometry.T_odom_base);
+    // The odometry may well be right (a real manoeuvre, or a false alarm): it keeps the frame
+    // unless the scan clearly prefers another pose. The constant velocity overrules it only
+    // when it explains the scan well, clearly better, and at another pose; a failed or poor
+    // match is no evidence against the odometry.
+    from_odometry =
+        matcher_.Match(*window_, field_, points, prediction.odometry, odometry_information);
+    const MatchResult from_velocity =
+        matcher_.Match(*window_, field_, points, centre, velocity_information);
+    const Pose2 difference = Between(from_velocity.T_odom_base, from_odometry.T_odom_base);
     const bool same = difference.translation().norm() < kSamePoseXy &&
                       std::abs(difference.theta()) < kSamePoseTheta;
-    if (odometry.ok && (!best.ok || same || odometry.score > best.score + kScoreMargin)) {
-      best = odometry;
-    } else {
-      ++stats_.constant_velocity_wins;
+    const bool overrule =
+        from_velocity.ok && from_velocity.score >= good && !same &&
+        (!from_odometry.ok || from_velocity.score > from_odometry.score + kScoreMargin);
+    best = overrule ? from_velocity : from_odometry;
+    if (overrule || (from_odometry.ok && from_odometry.score >= good)) {
+      return best;
+    }
+  } else {
+    best = matcher_.Match(*window_, field_, points, centre, velocity_information);
+    if (best.ok && best.score >= good) {
+      return best;
     }
   }
-  const double good = options_.matcher.good_score;
-  if (options_.wide_search.enabled && (!best.ok || best.score < good)) {
-    const WideSearchOptions& wide = options_.wide_search;
-    SearchLattice lattice;
-    lattice.linear_window = wide.linear_window;
-    lattice.linear_step = wide.linear_step;
-    lattice.angular_window = wide.angular_window;
-    lattice.angular_step = wide.angular_step;
-    lattice.sigma = wide.sigma;
-    lattice.max_points = static_cast<std::size_t>(wide.max_points);
-    const double res = field_.Limits().Resolution();
-    const std::vector<SearchResult> starts =
-        CorrelativeSearchTop(field_, points, centre, lattice, wide.candidates,
-                             2.0 * wide.linear_step * res, 2.0 * wide.angular_step);
-    step->wide_search = true;
-    ++stats_.wide_searches;
-    for (const SearchResult& start : starts) {
-      // The prior moves with the start: the constant-velocity guess is no better than the
-      // lattice pose the scan prefers.
-      MatchResult refined = matcher_.Refine(*window_, field_, points, start.T_odom_base,
-                                            start.T_odom_base, prior_information);
-      if (refined.ok && (!best.ok || refined.score > best.score + kScoreMargin)) {
-        refined.searched = true;
-        best = refined;
-      }
+  if (!options_.wide_search.enabled) {
+    return best;
+  }
+  const WideSearchOptions& wide = options_.wide_search;
+  SearchLattice lattice;
+  lattice.linear_window = wide.linear_window;
+  lattice.linear_step = wide.linear_step;
+  lattice.angular_window = wide.angular_window;
+  lattice.angular_step = wide.angular_step;
+  lattice.sigma = wide.sigma;
+  lattice.max_points = static_cast<std::size_t>(wide.max_points);
+  const double res = field_.Limits().Resolution();
+  const std::vector<SearchResult> starts =
+      CorrelativeSearchTop(field_, points, centre, lattice, wide.candidates,
+                           2.0 * wide.linear_step * res, 2.0 * wide.angular_step);
+  step->wide_search = true;
+  ++stats_.wide_searches;
+  for (const SearchResult& start : starts) {
+    // The prior moves with the start: the constant-velocity guess is no better than the
+    // lattice pose the scan prefers. A pose far from both predictions must explain the scan
+    // well.
+    MatchResult refined = matcher_.Refine(*window_, field_, points, start.T_odom_base,
+                                          start.T_odom_base, velocity_information);
+    if (refined.ok && refined.score >= good &&
+        (!best.ok || refined.score > best.score + kScoreMargin)) {
+      refined.searched = true;
+      best = refined;
     }
   }
   return best;
@@ -220,12 +233,15 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
     prediction = motion_check_.Predict(frame.corrected_time, odometry);
     step.odometry = prediction.check;
     // The raw-odometry baseline (match off) follows the odometry, glitches included.
+    const bool missing = prediction.check == OdometryCheck::kMissing && options_.match;
     const bool trusted = prediction.check == OdometryCheck::kConsistent || !options_.match;
     stats_.odometry_doubtful += prediction.check == OdometryCheck::kDoubtful ? 1 : 0;
     stats_.odometry_missing += prediction.check == OdometryCheck::kMissing ? 1 : 0;
-    const Pose2 predicted = trusted ? prediction.odometry : prediction.constant_velocity;
+    // A doubtful odometry keeps its prior unless the scan overrules it; a missing one has the
+    // constant velocity instead.
+    const Pose2 predicted = missing ? prediction.constant_velocity : prediction.odometry;
     const PriorSigmas defaults = DefaultPriorSigmas(Between(last_estimate_, predicted));
-    const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted, trusted);
+    const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted, !missing);
     pose = predicted;
     step.covariance = prior_information.inverse();
     if (!options_.match) {
@@ -245,20 +261,34 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       if (trusted) {
         step.match = matcher_.Match(*window_, field_, points, predicted, prior_information);
       } else {
-        step.match = MatchWithoutTrustedOdometry(points, prediction, prior_information, &step);
+        const Eigen::Matrix3d velocity_information = PriorInformation(
+            DefaultPriorSigmas(Between(last_estimate_, prediction.constant_velocity)),
+            prediction.constant_velocity, false);
+        step.match = MatchWithoutTrustedOdometry(points, prediction, velocity_information,
+                                                 prior_information, &step);
       }
       stats_.seconds_match += SecondsSince(start);
       stats_.searches += step.match.searched ? 1 : 0;
-      const Pose2 correction = Between(predicted, step.match.T_odom_base);
-      // Without trusted odometry the match may move the guess as far as the wide search looks.
-      const double max_xy = trusted ? options_.max_correction_xy
-                                    : std::max(options_.max_correction_xy,
-                                               std::sqrt(2.0) * options_.wide_search.linear_window);
-      const double max_theta =
-          trusted ? options_.max_correction_theta
-                  : std::max(options_.max_correction_theta, options_.wide_search.angular_window);
-      if (step.match.ok && correction.translation().norm() <= max_xy &&
-          std::abs(correction.theta()) <= max_theta) {
+      // Trusted odometry: the match may correct the prediction by the usual limits. Otherwise
+      // it may also land anywhere the wide search looks around the constant velocity; a pose
+      // beyond the usual limits of the odometry's prediction overrules a doubtful increment.
+      auto within = [](const Pose2& from, const Pose2& to, double xy, double theta) {
+        const Pose2 d = Between(from, to);
+        return d.translation().norm() <= xy && std::abs(d.theta()) <= theta;
+      };
+      const Pose2& found = step.match.T_odom_base;
+      const bool near_prediction = !missing && within(predicted, found, options_.max_correction_xy,
+                                                      options_.max_correction_theta);
+      const bool near_velocity =
+          !trusted &&
+          within(prediction.constant_velocity, found,
+                 std::max(options_.max_correction_xy,
+                          std::sqrt(2.0) * options_.wide_search.linear_window),
+                 std::max(options_.max_correction_theta, options_.wide_search.angular_window));
+      step.odometry_overruled = prediction.check == OdometryCheck::kDoubtful && step.match.ok &&
+                                !near_prediction && near_velocity;
+      stats_.odometry_overruled += step.odometry_overruled ? 1 : 0;
+      if (step.match.ok && (near_prediction || near_velocity)) {
         pose = step.match.T_odom_base;
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
@@ -269,10 +299,21 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         }
       } else {
         step.status = FrameStatus::kFallbackRejected;
+        step.odometry_overruled = false;
         ++stats_.fallback_rejected;
       }
     }
-    motion_check_.Update(frame.corrected_time, odometry, pose, prediction);
+    if (prediction.check != OdometryCheck::kConsistent) {
+      const Pose2 moved = Between(last_estimate_, pose);
+      GRIDSLAM_LOG_DEBUG(
+          "frame {}: odometry {} (innovation {:.3f} m {:.3f} rad, thresholds {:.3f} {:.3f}), "
+          "{}, {} score {:.2f}, moved {:.3f} {:.3f} {:.3f}",
+          stats_.frames - 1, ToString(prediction.check), prediction.innovation_xy,
+          prediction.innovation_theta, motion_check_.ThresholdXy(), motion_check_.ThresholdTheta(),
+          step.odometry_overruled ? "overruled" : "kept", ToString(step.status), step.match.score,
+          moved.x(), moved.y(), moved.theta());
+    }
+    motion_check_.Update(frame.corrected_time, odometry, pose, prediction, step.odometry_overruled);
   }
   step.T_odom_base = pose;
 

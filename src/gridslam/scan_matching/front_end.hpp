@@ -44,6 +44,7 @@ struct FrontEndStep {
   FrameStatus status = FrameStatus::kFirst;
   OdometryCheck odometry = OdometryCheck::kConsistent;  ///< Verdict on the odometry increment.
   bool wide_search = false;               ///< The wide search ran (doubtful or missing odometry).
+  bool odometry_overruled = false;        ///< The scan overruled a doubtful odometry increment.
   MatchResult match;                      ///< Details of the match (if one was attempted).
   bool inserted = false;                  ///< The scan was inserted into the local map.
   std::optional<keymap::KeyMap> key_map;  ///< A key map finished after this frame.
@@ -60,7 +61,7 @@ struct FrontEndStats {
   long odometry_doubtful = 0;  ///< Increments the motion check found implausible.
   long odometry_missing = 0;   ///< Frames without odometry.
   long wide_searches = 0;
-  long constant_velocity_wins = 0;  ///< Doubtful frames matched from the constant velocity.
+  long odometry_overruled = 0;  ///< Doubtful increments the scan match replaced.
   long insertions = 0;
   long key_maps = 0;
   long field_rebuilds = 0;
@@ -104,12 +105,14 @@ class FrontEnd {
                                                  const Pose2& T_odom_base_predicted,
                                                  bool odometry_trusted) const;
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
-  /// Matches a frame whose odometry is doubtful or missing: from the constant-velocity
-  /// prediction, from the odometry's (if any), and from the wide search's maxima when neither
-  /// explains the scan; the best-scoring refinement wins.
+  /// Matches a frame whose odometry is doubtful or missing: from the odometry's prediction
+  /// (if any), from the constant velocity, and from the wide search's maxima when neither
+  /// explains the scan. A doubtful odometry keeps the frame unless the scan clearly prefers
+  /// another pose (step->odometry_overruled).
   [[nodiscard]] MatchResult MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                         const MotionPrediction& prediction,
-                                                        const Eigen::Matrix3d& prior_information,
+                                                        const Eigen::Matrix3d& velocity_information,
+                                                        const Eigen::Matrix3d& odometry_information,
                                                         FrontEndStep* step);
 
   FrontEndOptions options_;

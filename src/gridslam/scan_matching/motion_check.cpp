@@ -50,8 +50,9 @@ void MotionCheck::Reset(Time time, const Pose2& odometry, const Pose2& estimate)
   last_time_ = time;
   last_odometry_ = odometry;
   last_estimate_ = estimate;
+  motion_ = odometry;
   recent_.clear();
-  recent_.push_back({time, estimate});
+  recent_.push_back({time, motion_});
 }
 
 double MotionCheck::ThresholdXy() const {
@@ -72,7 +73,7 @@ MotionPrediction MotionCheck::Predict(Time time, const std::optional<Pose2>& odo
   if (known_velocity) {
     // A long gap (a pause in the log) says little about the motion through it: extrapolate over
     // at most the baseline.
-    const Pose2 moved = Between(recent_.front().estimate, recent_.back().estimate);
+    const Pose2 moved = Between(recent_.front().motion, recent_.back().motion);
     velocity = ScaleIncrement(moved, std::min(dt, options_.velocity_baseline) / span);
   }
   prediction.constant_velocity = last_estimate_ * velocity;
@@ -100,15 +101,28 @@ MotionPrediction MotionCheck::Predict(Time time, const std::optional<Pose2>& odo
 }
 
 void MotionCheck::Update(Time time, const std::optional<Pose2>& odometry, const Pose2& estimate,
-                         const MotionPrediction& prediction) {
+                         const MotionPrediction& prediction, bool odometry_overruled) {
+  const bool believed = prediction.check == OdometryCheck::kConsistent ||
+                        (prediction.check == OdometryCheck::kDoubtful && !odometry_overruled);
+  // The velocity follows the odometry where it is consistent and the extrapolation where it is
+  // doubtful, never the matcher: a wrong match must not make the correct odometry that follows
+  // look implausible (and then be overruled by the wrong velocity, again and again). A doubtful
+  // increment the scan did not overrule may be a real manoeuvre: the velocity must learn it, or
+  // every later increment of the manoeuvre would look doubtful too. Where the scan overruled
+  // the odometry, or there is none, the motion is the scan-matched one.
+  if (believed) {
+    motion_ = motion_ * prediction.odometry_increment;
+  } else {
+    motion_ = motion_ * Between(last_estimate_, estimate);
+  }
   if (time < last_time_) {
     recent_.clear();  // time went backwards: the history says nothing about what follows
   }
-  recent_.push_back({time, estimate});
+  recent_.push_back({time, motion_});
   while (recent_.size() > 2 && ToSeconds(time - recent_[1].time) >= options_.velocity_baseline) {
     recent_.pop_front();
   }
-  if (prediction.check == OdometryCheck::kConsistent && odometry.has_value()) {
+  if (believed && odometry.has_value()) {
     const double sx = prediction.innovation_xy * prediction.innovation_xy;
     const double st = prediction.innovation_theta * prediction.innovation_theta;
     const auto window = static_cast<std::size_t>(options_.window);

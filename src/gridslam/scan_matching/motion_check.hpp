@@ -8,8 +8,9 @@
 // dynamics, its scan rate and its odometry: a robot that accelerates hard or a log decimated to
 // 1 Hz raises the spread, a smooth platform lowers it. A floor keeps the test meaningful before
 // the statistics exist. An increment is doubtful when it is implausible in translation or in
-// yaw, or not finite. The front end then also matches from the constant-velocity prediction,
-// searches widely when neither explains the scan, and never falls back to the doubtful odometry.
+// yaw, or not finite. The front end then matches from both predictions, searches widely when
+// neither explains the scan, and lets the scan overrule the odometry only when it clearly prefers
+// another pose: a false alarm (a real manoeuvre) costs a second match, never the estimate.
 #pragma once
 
 #include <cstddef>
@@ -61,7 +62,7 @@ struct MotionCheckOptions {
 /// The two motion predictions of a frame and the verdict on its odometry.
 struct MotionPrediction {
   Pose2 odometry;           ///< Previous estimate composed with the odometry increment.
-  Pose2 constant_velocity;  ///< Previous estimate moved at the recent estimated velocity.
+  Pose2 constant_velocity;  ///< Previous estimate moved at the recent velocity.
   Pose2 odometry_increment;
   OdometryCheck check = OdometryCheck::kConsistent;
   double innovation_xy = 0.0;     ///< |odometry - constant velocity|, translation [m].
@@ -84,10 +85,11 @@ class MotionCheck {
   /// Predicts the pose of a frame at `time` with odometry pose `odometry` (nullopt: none).
   [[nodiscard]] MotionPrediction Predict(Time time, const std::optional<Pose2>& odometry) const;
 
-  /// Records the frame's final estimate; `prediction` is what Predict returned for it. The
-  /// innovation enters the statistics only when the odometry was consistent.
+  /// Records the frame's final estimate; `prediction` is what Predict returned for it, and
+  /// `odometry_overruled` whether the scan match replaced a doubtful odometry increment. The
+  /// odometry increment enters the velocity and the statistics unless it was overruled.
   void Update(Time time, const std::optional<Pose2>& odometry, const Pose2& estimate,
-              const MotionPrediction& prediction);
+              const MotionPrediction& prediction, bool odometry_overruled = false);
 
   /// Current thresholds (floor or k robust std) [m], [rad].
   [[nodiscard]] double ThresholdXy() const;
@@ -100,9 +102,12 @@ class MotionCheck {
   Pose2 last_estimate_;
   struct Stamped {
     Time time;
-    Pose2 estimate;
+    Pose2 motion;
   };
-  std::deque<Stamped> recent_;  ///< Estimates of the last velocity_baseline seconds.
+  /// The robot's motion as the check believes it: the odometry chained unless the scan
+  /// overruled it or there is none, the scan-matched estimates there.
+  Pose2 motion_;
+  std::deque<Stamped> recent_;  ///< motion_ over the last velocity_baseline seconds.
   std::vector<double> squares_xy_;
   std::vector<double> squares_theta_;
   std::size_t next_ = 0;

@@ -53,7 +53,8 @@ TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityIsT
     t_ += 0.2;
     const MotionPrediction p = check_.Predict(At(t_), odometry_);
     EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
-    EXPECT_TRUE(IsApprox(p.Trusted(), truth_, 1e-6, 1e-6));
+    // The velocity comes from the (noisy) odometry of the last second.
+    EXPECT_TRUE(IsApprox(p.Trusted(), truth_, 0.02, 0.01));
     check_.Update(At(t_), odometry_, truth_, p);
     // The odometry carries on from the jumped pose: its next increments are fine again.
     Drive(5);
@@ -66,7 +67,7 @@ TEST_F(MotionCheckTest, MissingOdometryPredictsTheConstantVelocity) {
   const Pose2 expected = truth_ * Pose2(0.1, 0.0, 0.02);
   const MotionPrediction p = check_.Predict(At(t_ + 0.2), std::nullopt);
   EXPECT_EQ(p.check, OdometryCheck::kMissing);
-  EXPECT_TRUE(IsApprox(p.Trusted(), expected, 1e-9, 1e-9));
+  EXPECT_TRUE(IsApprox(p.Trusted(), expected, 0.02, 0.01));
 }
 
 TEST_F(MotionCheckTest, NonFiniteOdometryIsDoubtful) {
