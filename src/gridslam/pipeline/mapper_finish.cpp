@@ -13,7 +13,10 @@ namespace gridslam::pipeline {
 
 void Mapper::Impl::FinalOptimization() {
   const auto start = std::chrono::steady_clock::now();
-  for (int round = 0; round < options.graph.prune_rounds; ++round) {
+  // Optimize, prune the worst loop edge, and again, up to prune_rounds prunings; the graph is
+  // optimized once more after the last pruning, so that the result (and chi2_final) is the
+  // optimum of exactly the edges that remain.
+  for (int round = 0;; ++round) {
     RebuildOptimizer();  // graph with the current estimates, active edges, one anchor each
     pose_graph::PoseGraph graph = sgd->graph();
     if (options.graph.final_method != "none") {
@@ -25,6 +28,9 @@ void Mapper::Impl::FinalOptimization() {
       node.estimate = graph.vertex(graph.IndexOf(node.id)).T_map_v;
     }
     stats.chi2_final = pose_graph::Chi2(graph);
+    if (round == options.graph.prune_rounds) {
+      break;
+    }
     // Loop edges the optimum cannot explain are removed, the worst first.
     int edge_index = 0;
     int worst = -1;
