@@ -74,7 +74,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
     return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
   }
 
-  pipeline::Mapper mapper(context.options, num_robots);
+  pipeline::Mapper mapper(context.options.Mapper(), num_robots);
   std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
   std::vector<std::optional<Frame>> next(static_cast<std::size_t>(num_robots));
   std::vector<std::optional<Time>> first_time(static_cast<std::size_t>(num_robots));

@@ -9,6 +9,7 @@
 
 #include "gridslam/io/g2o_io.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
 #include "gridslam/simulation/simulator.hpp"
@@ -28,7 +29,7 @@ TEST(FinalGraph, WrittenGraphIsAtItsOptimumAndCarriesTheReportedChi2) {
   SlamOptions options;
   options.graph.prune_rounds = 1;
   options.loop_closure.prune_chi2 = 0.5;  // some loop edge is above it: pruning in the last round
-  pipeline::Mapper mapper(options, 1);
+  pipeline::Mapper mapper(options.Mapper(), 1);
   for (const Frame& frame : simulated.value().robots.at(0).frames) {
     mapper.AddFrame(0, frame);
   }

@@ -18,6 +18,7 @@
 #include "gridslam/multi_robot/piece_log.hpp"
 #include "gridslam/multi_robot/relation_split.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/simulation/simulator.hpp"
 #include "gridslam/simulation/world.hpp"
 #include "gridslam/testing/data_path.hpp"
@@ -29,7 +30,7 @@ constexpr Duration kTolerance = std::chrono::milliseconds(1);
 
 /// Maps the robots' frames interleaved by (corrected) time, as `gridslam map` does.
 pipeline::MapperResult MapTogether(const std::vector<std::vector<Frame>>& robots) {
-  pipeline::Mapper mapper(SlamOptions{}, static_cast<int>(robots.size()));
+  pipeline::Mapper mapper(SlamOptions{}.Mapper(), static_cast<int>(robots.size()));
   std::vector<std::size_t> next(robots.size(), 0);
   while (true) {
     std::optional<std::size_t> robot;
