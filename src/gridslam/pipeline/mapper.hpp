@@ -85,8 +85,8 @@ struct MapSnapshot {
   std::vector<std::vector<TrajectoryPose>> trajectories;
   std::vector<int> component_of_robot;  ///< As MapperResult::component_of_robot.
   /// Log-odds grid per map component: each key map's scans, fused once in the key map's frame
-  /// and placed at its current estimate (re-placed only when the estimate moved by more than
-  /// half a cell). Scans not yet in a key map are not in it.
+  /// and placed at its current estimate (re-placed only when the estimate moved by more than a
+  /// cell). Scans not yet in a key map are not in it.
   std::vector<Grid2D<float>> maps;
   long key_maps_replaced = 0;  ///< Key maps placed again (moved) by this snapshot.
   long key_maps_added = 0;     ///< Key maps placed for the first time by this snapshot.

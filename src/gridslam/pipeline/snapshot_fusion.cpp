@@ -9,7 +9,32 @@ void SnapshotFusion::AddKeyMap(int id, const std::vector<fusion::PosedScan>& sca
   if (scans_in_key_frame.empty() || Has(id)) {
     return;
   }
-  local_.emplace(id, fusion::FuseScans(scans_in_key_frame, options_));
+  const Grid2D<float> fused = fusion::FuseScans(scans_in_key_frame, options_);
+  // Cropped to the observed cells: placing a key map costs the area of its grid.
+  Eigen::Array2i lo(fused.Width(), fused.Height());
+  Eigen::Array2i hi(-1, -1);
+  for (int j = 0; j < fused.Height(); ++j) {
+    for (int i = 0; i < fused.Width(); ++i) {
+      if (fused(i, j) != 0.0F) {
+        lo = lo.min(Eigen::Array2i(i, j));
+        hi = hi.max(Eigen::Array2i(i, j));
+      }
+    }
+  }
+  if (hi.x() < lo.x()) {
+    return;
+  }
+  const MapLimits& limits = fused.Limits();
+  const MapLimits cropped(limits.Resolution(),
+                          limits.Origin() + (lo.cast<double>() * limits.Resolution()).matrix(),
+                          hi.x() - lo.x() + 1, hi.y() - lo.y() + 1);
+  Grid2D<float> local(cropped, 0.0F);
+  for (int j = 0; j < cropped.Height(); ++j) {
+    for (int i = 0; i < cropped.Width(); ++i) {
+      local(i, j) = fused(lo.x() + i, lo.y() + j);
+    }
+  }
+  local_.emplace(id, std::move(local));
 }
 
 void SnapshotFusion::Bounds(int id, const Pose2& T_map_key, Eigen::Vector2d& lo,
@@ -28,13 +53,17 @@ void SnapshotFusion::Bounds(int id, const Pose2& T_map_key, Eigen::Vector2d& lo,
 }
 
 bool SnapshotFusion::Moved(int id, const Pose2& before, const Pose2& after) const {
+  // The farthest cell of the key map's grid from its origin moves by about |d theta| * radius.
   const MapLimits& limits = local_.at(id).Limits();
-  const double radius = 0.5 * std::hypot(limits.Width(), limits.Height()) * limits.Resolution() +
-                        limits.Origin().norm();
-  const Pose2 delta = Between(before, after);
-  const double half = 0.5 * options_.resolution;
-  return (after.translation() - before.translation()).norm() > half ||
-         std::abs(delta.theta()) * radius > half;
+  const Eigen::Vector2d o = limits.Origin();
+  const Eigen::Vector2d size(limits.Width() * limits.Resolution(),
+                             limits.Height() * limits.Resolution());
+  const double radius = std::max(std::max(o.norm(), (o + size).norm()),
+                                 std::max(Eigen::Vector2d(o.x() + size.x(), o.y()).norm(),
+                                          Eigen::Vector2d(o.x(), o.y() + size.y()).norm()));
+  const double tolerance = options_.resolution;
+  return (after.translation() - before.translation()).norm() > tolerance ||
+         std::abs(Between(before, after).theta()) * radius > tolerance;
 }
 
 void SnapshotFusion::Place(Grid2D<float>& grid, int id, const Pose2& T_map_key, float sign) const {

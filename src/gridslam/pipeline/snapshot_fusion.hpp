@@ -2,8 +2,8 @@
 // scans are fused once into a log-odds grid in the key map's own frame; a component's map is the
 // sum of these grids, each resampled (nearest cell) at the key map's estimate. Log-odds add, so
 // a key map whose estimate moved is taken out at its old pose and put in at its new one; the
-// cost of an update is proportional to the key maps added or moved (by more than half a cell,
-// or a turn moving its far corner by that much), not to the whole map. The grid grows (and is
+// cost of an update is proportional to the key maps added or moved (by more than a cell, or
+// a turn moving its far corner by that much), not to the whole map. The grid grows (and is
 // rebuilt) only when a key map falls outside it. Not bit-identical to the final fusion
 // (fusion::FuseScans), which interpolates corrections between key maps and clamps once.
 #pragma once
