@@ -38,6 +38,7 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
   }
   state.last_pose = step.T_odom_base;
+  state.last_odometry = frame.has_odometry ? frame.T_odom_base : step.T_odom_base;
   state.last_time = frame.time;
   state.scans.push_back({frame.time, step.T_odom_base, state.travel, -1});
   if (step.inserted || state.fusion_scans.empty()) {
@@ -157,7 +158,7 @@ void Mapper::Impl::SyncStats() {
   stats.joins = static_cast<long>(joins.size());
 }
 
-Pose2 Mapper::Impl::MapToOdom(int robot) const {
+Pose2 Mapper::Impl::MapToFrontEnd(int robot) const {
   const int last = graph.LastKeyMap(robot);
   if (last < 0) {
     return Pose2();
@@ -228,12 +229,15 @@ std::optional<Pose2> Mapper::CurrentPose(int robot) const {
   if (!state.last_pose.has_value()) {
     return std::nullopt;
   }
-  return impl_->MapToOdom(robot) * *state.last_pose;
+  return impl_->MapToFrontEnd(robot) * *state.last_pose;
 }
 
 Pose2 Mapper::MapToOdom(int robot) const {
-  GRIDSLAM_CHECK(robot >= 0 && robot < static_cast<int>(impl_->robots.size())) << robot;
-  return impl_->MapToOdom(robot);
+  const std::optional<Pose2> pose = CurrentPose(robot);
+  if (!pose.has_value()) {
+    return Pose2();
+  }
+  return *pose * impl_->robots[static_cast<std::size_t>(robot)].last_odometry.Inverse();
 }
 
 int Mapper::MapComponent(int robot) const {

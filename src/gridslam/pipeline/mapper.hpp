@@ -112,8 +112,10 @@ class Mapper {
   /// T_map_base of the robot's latest frame in its map frame (the frame of its map component),
   /// nullopt before its first frame.
   [[nodiscard]] std::optional<Pose2> CurrentPose(int robot) const;
-  /// T_map_odom: maps the robot's front-end (odometry) frame into its map frame, from the drift
-  /// correction of its newest key map (identity before its first key map).
+  /// T_map_odom: maps the robot's odometry frame (Frame::T_odom_base's) into its map frame,
+  /// so that MapToOdom * the latest frame's T_odom_base = CurrentPose (what a ROS node would
+  /// publish as map -> odom). Recordings without odometry: the front end's frame stands in.
+  /// Identity before the robot's first frame.
   [[nodiscard]] Pose2 MapToOdom(int robot) const;
   /// The robot's map component (robots with the same value share one map frame; numbered as in
   /// MapperResult::component_of_robot).

@@ -48,7 +48,9 @@ struct RobotState {
   std::vector<FusionScan> fusion_scans;
   std::size_t unfused = 0;  ///< First fusion scan not yet given to the snapshot fusion.
   double travel = 0.0;
-  std::optional<Pose2> last_pose;
+  std::optional<Pose2> last_pose;  ///< Front-end pose of the latest frame.
+  /// Odometry pose of the latest frame (its front-end pose when the recording has none).
+  Pose2 last_odometry;
   Time last_time;
 };
 
@@ -69,7 +71,8 @@ struct Mapper::Impl {
   /// Full optimization of the current graph (options.optimizer), then SGD restarts from it.
   void OptimizeNow();
   void SyncStats();
-  [[nodiscard]] Pose2 MapToOdom(int robot) const;
+  /// Maps the robot's front-end frame into its map frame (the newest key map's correction).
+  [[nodiscard]] Pose2 MapToFrontEnd(int robot) const;
   MapSnapshot Snapshot();
 
   // mapper_closures.cpp
