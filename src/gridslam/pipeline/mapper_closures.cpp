@@ -150,7 +150,7 @@ bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distanc
         graph.AddLoopEdge(m, ClosureOutcome::kAccepted, /*appearance=*/true, information,
                           options.graph.loop_uncertainty);
       }
-      OptimizeNow();  // a correction of metres: more than a few online SGD iterations absorb
+      OptimizeNow();  // a correction of metres: more than a few SGD iterations can absorb
       return false;
   }
   return false;
