@@ -166,7 +166,9 @@ Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
                result.vertex_robot[static_cast<std::size_t>(id)])] == component;
   };
   for (const pipeline::ClosureRecord& c : result.closures) {
-    if ((c.outcome == "accepted" || c.outcome == "joined") && in_component(c.from)) {
+    if ((c.outcome == pipeline::ClosureOutcome::kAccepted ||
+         c.outcome == pipeline::ClosureOutcome::kJoined) &&
+        in_component(c.from)) {
       cv::line(
           canvas.image, canvas.Pixel(graph.vertex(graph.IndexOf(c.from)).T_map_v.translation()),
           canvas.Pixel(graph.vertex(graph.IndexOf(c.to)).T_map_v.translation()), kClosureColour, 1);

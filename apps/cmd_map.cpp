@@ -14,13 +14,17 @@
 #include <nlohmann/json.hpp>
 
 #include "gridslam/grid/log_odds.hpp"
+#include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/io/carmen_reader.hpp"
+#include "gridslam/io/map_io.hpp"
 #include "gridslam/io/options_yaml.hpp"
+#include "gridslam/pipeline/frame_interleaver.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 
 #include "app_align_map.hpp"
 #include "app_map_output.hpp"
 #include "command.hpp"
+#include <time.h>
 #include <unistd.h>
 
 namespace gridslam::app {
@@ -76,6 +80,83 @@ struct MapArgs {
   std::vector<std::string> logs;
   std::string output;
   bool align_map = false;
+  double snapshot_period = 0.0;  ///< --snapshots [s of log time], 0 = none.
+};
+
+/// CPU time of the calling thread [s] (snapshot costs, robust to other load on the machine).
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// `gridslam map --snapshots S`: writes the map of every component every S seconds of log time
+/// into a folder (snapshot_00000.png, ...; component c > 0: snapshot_00000_c<c>.png), through
+/// the Mapper's online API (Mapper::Snapshot), and times each snapshot.
+class SnapshotWriter {
+ public:
+  SnapshotWriter(std::filesystem::path dir, double period, const fusion::FusionOptions& fusion)
+      : dir_(std::move(dir)), period_(period), fusion_(fusion) {}
+
+  Status AfterFrame(pipeline::Mapper& mapper, Time time) {
+    if (period_ <= 0.0) {
+      return Status::Ok();
+    }
+    if (!start_) {
+      start_ = time;
+    }
+    if (ToSeconds(time - *start_) < period_ * static_cast<double>(written_ + 1)) {
+      return Status::Ok();
+    }
+    const auto begin = Clock::now();
+    const double cpu_begin = ThreadCpuSeconds();
+    const pipeline::MapSnapshot snapshot = mapper.Snapshot();
+    cpu_seconds_.push_back(ThreadCpuSeconds() - cpu_begin);
+    seconds_.push_back(std::chrono::duration<double>(Clock::now() - begin).count());
+    replaced_ += snapshot.key_maps_replaced;
+    for (std::size_t c = 0; c < snapshot.maps.size(); ++c) {
+      if (snapshot.maps[c].size() == 0) {
+        continue;
+      }
+      char name[64];
+      std::snprintf(name, sizeof(name), c == 0 ? "snapshot_%05ld.png" : "snapshot_%05ld_c%zu.png",
+                    written_, c);
+      GRIDSLAM_RETURN_IF_ERROR(io::WriteMapImage((dir_ / name).string(),
+                                                 fusion::ToOccupancy(snapshot.maps[c], fusion_)));
+    }
+    ++written_;
+    return Status::Ok();
+  }
+
+  /// Counts and the cost per snapshot (wall and this thread's CPU time; maps not included).
+  [[nodiscard]] nlohmann::json Json() const {
+    const auto summary = [](const std::vector<double>& v) -> nlohmann::json {
+      double total = 0.0;
+      double worst = 0.0;
+      for (const double s : v) {
+        total += s;
+        worst = std::max(worst, s);
+      }
+      return {{"mean", v.empty() ? 0.0 : total / static_cast<double>(v.size())},
+              {"max", worst},
+              {"last", v.empty() ? 0.0 : v.back()}};
+    };
+    return {{"period_s", period_},
+            {"count", written_},
+            {"key_maps_placed_again", replaced_},
+            {"seconds", summary(seconds_)},
+            {"cpu_seconds", summary(cpu_seconds_)}};
+  }
+
+ private:
+  std::filesystem::path dir_;
+  double period_;
+  fusion::FusionOptions fusion_;
+  std::optional<Time> start_;
+  long written_ = 0;
+  long replaced_ = 0;
+  std::vector<double> seconds_;
+  std::vector<double> cpu_seconds_;
 };
 
 nlohmann::json StatsJson(const pipeline::MapperStats& s) {
@@ -124,23 +205,26 @@ int RunMap(const MapArgs& args, AppContext& context) {
     return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
   }
 
-  pipeline::Mapper mapper(context.options, num_robots);
+  pipeline::Mapper mapper(context.options.Mapper(), num_robots);
   std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
-  std::vector<std::optional<Frame>> next(static_cast<std::size_t>(num_robots));
   std::vector<std::optional<Time>> first_time(static_cast<std::size_t>(num_robots));
-  // Reads the next frame of robot r into next[r]; false on a read error (reported).
-  const auto advance = [&](std::size_t r) -> std::optional<Error> {
-    auto frame = readers[r].Next();
-    if (!frame.ok()) {
-      return frame.error();
-    }
-    next[r] = std::move(frame).value();
-    return std::nullopt;
-  };
-  for (std::size_t r = 0; r < next.size(); ++r) {
+  std::vector<pipeline::FrameSource> sources;
+  for (std::size_t r = 0; r < readers.size(); ++r) {
     robots[r].log = args.logs[r];
-    if (auto error = advance(r)) {
-      return ReportError(*error);
+    sources.push_back([&reader = readers[r]] { return reader.Next(); });
+  }
+  // --snapshots: the map every S seconds of log time, written aside and moved into place at
+  // the end (no half-written output on an error).
+  const std::filesystem::path snapshot_dir = std::filesystem::path(args.output) / "snapshots";
+  const std::filesystem::path partial_dir =
+      std::filesystem::path(args.output) / ".snapshots.partial";
+  SnapshotWriter snapshots(partial_dir, args.snapshot_period, context.options.fusion);
+  if (args.snapshot_period > 0.0) {
+    std::filesystem::remove_all(partial_dir, ec);
+    std::filesystem::create_directories(partial_dir, ec);
+    if (ec) {
+      return ReportError(
+          RuntimeError("cannot create " + partial_dir.string() + ": " + ec.message()));
     }
   }
   const bool progress = isatty(fileno(stderr)) != 0;
@@ -150,44 +234,41 @@ int RunMap(const MapArgs& args, AppContext& context) {
     total_bytes += static_cast<double>(std::filesystem::file_size(log, ec));
   }
   auto last_progress = Clock::now();
-  while (true) {
-    // The robot whose next frame comes first (by the repaired time used for ordering).
-    std::optional<std::size_t> robot;
-    for (std::size_t r = 0; r < next.size(); ++r) {
-      if (next[r].has_value() &&
-          (!robot || next[r]->corrected_time < next[*robot]->corrected_time)) {
-        robot = r;
-      }
-    }
-    if (!robot) {
-      break;
-    }
-    const std::size_t r = *robot;
-    const Frame& frame = *next[r];
-    if (!first_time[r]) {
-      first_time[r] = frame.time;
-    }
-    robots[r].duration = ToSeconds(frame.time - *first_time[r]);
-    robots[r].T_base_laser.push_back(frame.T_base_laser);
-    ++robots[r].scans;
-    mapper.AddFrame(static_cast<int>(r), frame);
-    if (auto error = advance(r)) {
-      return ReportError(*error);
-    }
-    if (progress && ++processed % 50 == 0 &&
-        (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
-      last_progress = Clock::now();
-      double read = 0.0;
-      for (const io::CarmenReader& reader : readers) {
-        read += static_cast<double>(reader.BytesRead());
-      }
-      PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
-                    std::chrono::duration<double>(last_progress - start).count(), mapper.Stats());
-    }
-  }
+  std::optional<Error> snapshot_error;
+  const Status fed =
+      pipeline::InterleaveFrames(std::move(sources), [&](int robot, const Frame& frame) {
+        const auto r = static_cast<std::size_t>(robot);
+        if (!first_time[r]) {
+          first_time[r] = frame.time;
+        }
+        robots[r].duration = ToSeconds(frame.time - *first_time[r]);
+        robots[r].T_base_laser.push_back(frame.T_base_laser);
+        ++robots[r].scans;
+        mapper.AddFrame(robot, frame);
+        if (!snapshot_error) {
+          if (const Status s = snapshots.AfterFrame(mapper, frame.time); !s.ok()) {
+            snapshot_error = s.error();
+          }
+        }
+        if (progress && ++processed % 50 == 0 &&
+            (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
+          last_progress = Clock::now();
+          double read = 0.0;
+          for (const io::CarmenReader& reader : readers) {
+            read += static_cast<double>(reader.BytesRead());
+          }
+          PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
+                        std::chrono::duration<double>(last_progress - start).count(),
+                        mapper.Stats());
+        }
+      });
   if (progress) {
     PrintProgress(1.0, std::chrono::duration<double>(Clock::now() - start).count(), mapper.Stats());
     std::fprintf(stderr, "\n");
+  }
+  if (!fed.ok() || snapshot_error) {
+    std::filesystem::remove_all(partial_dir, ec);
+    return ReportError(fed.ok() ? *snapshot_error : fed.error());
   }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
@@ -221,6 +302,15 @@ int RunMap(const MapArgs& args, AppContext& context) {
     duration = std::max(duration, robots[r].duration);
   }
   report["logs"] = logs;
+  if (args.snapshot_period > 0.0) {
+    report["snapshots"] = snapshots.Json();
+    std::filesystem::remove_all(snapshot_dir, ec);
+    std::filesystem::rename(partial_dir, snapshot_dir, ec);
+    if (ec) {
+      return ReportError(RuntimeError("cannot move " + partial_dir.string() + " to " +
+                                      snapshot_dir.string() + ": " + ec.message()));
+    }
+  }
   nlohmann::json joins = nlohmann::json::array();
   for (const pipeline::JoinRecord& j : result.joins) {
     joins.push_back({{"robots", {j.robot_a, j.robot_b}},
@@ -261,6 +351,10 @@ RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
   sub.add_flag("--align-map", args->align_map,
                "Rotate the map frame so that the dominant wall directions lie along its axes "
                "(default: the first key map's frame)");
+  sub.add_option("--snapshots", args->snapshot_period,
+                 "Write the map every S seconds of log time into OUTPUT/snapshots/ (PNG "
+                 "flip-book through the online API; 0 = none) [s]")
+      ->check(CLI::NonNegativeNumber);
   return [args](AppContext& ctx) { return RunMap(*args, ctx); };
 }
 

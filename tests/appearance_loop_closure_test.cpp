@@ -10,6 +10,7 @@
 
 #include "gridslam/eval/relation_metric.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/simulation/simulator.hpp"
 #include "gridslam/simulation/world.hpp"
 
@@ -23,7 +24,7 @@ struct MapRun {
 };
 
 MapRun Map(const simulation::RobotRun& robot, const SlamOptions& options) {
-  pipeline::Mapper mapper(options, 1);
+  pipeline::Mapper mapper(options.Mapper(), 1);
   for (const Frame& frame : robot.frames) {
     mapper.AddFrame(0, frame);
   }

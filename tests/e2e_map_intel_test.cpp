@@ -13,6 +13,7 @@
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/relations_io.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/testing/data_path.hpp"
 
 namespace gridslam::pipeline {
@@ -35,7 +36,7 @@ TEST(MapperIntegration, IntelNearBestPublished) {
   auto relations = io::ReadRelations(rel);
   ASSERT_TRUE(relations.ok()) << relations.error().ToString();
 
-  Mapper mapper(options, 1);
+  Mapper mapper(options.Mapper(), 1);
   std::vector<eval::StampedPose> odometry;
   for (const Frame& frame : frames.value()) {
     mapper.AddFrame(0, frame);

@@ -12,6 +12,7 @@
 
 #include "gridslam/eval/relation_metric.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/simulation/simulator.hpp"
 #include "gridslam/simulation/world.hpp"
 
@@ -39,7 +40,7 @@ TEST_P(SimulatedWorld, MapScoresNearItsMeasuredFigures) {
   ASSERT_TRUE(simulated.ok()) << simulated.error().ToString();
   const simulation::RobotRun& robot = simulated.value().robots.at(0);
 
-  pipeline::Mapper mapper(SlamOptions{}, 1);
+  pipeline::Mapper mapper(SlamOptions{}.Mapper(), 1);
   std::vector<eval::StampedPose> odometry;
   for (const Frame& frame : robot.frames) {
     mapper.AddFrame(0, frame);

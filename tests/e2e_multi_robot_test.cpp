@@ -17,7 +17,9 @@
 #include "gridslam/multi_robot/log_split.hpp"
 #include "gridslam/multi_robot/piece_log.hpp"
 #include "gridslam/multi_robot/relation_split.hpp"
+#include "gridslam/pipeline/frame_interleaver.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/pipeline/slam_options.hpp"
 #include "gridslam/simulation/simulator.hpp"
 #include "gridslam/simulation/world.hpp"
 #include "gridslam/testing/data_path.hpp"
@@ -29,22 +31,14 @@ constexpr Duration kTolerance = std::chrono::milliseconds(1);
 
 /// Maps the robots' frames interleaved by (corrected) time, as `gridslam map` does.
 pipeline::MapperResult MapTogether(const std::vector<std::vector<Frame>>& robots) {
-  pipeline::Mapper mapper(SlamOptions{}, static_cast<int>(robots.size()));
-  std::vector<std::size_t> next(robots.size(), 0);
-  while (true) {
-    std::optional<std::size_t> robot;
-    for (std::size_t r = 0; r < robots.size(); ++r) {
-      if (next[r] < robots[r].size() &&
-          (!robot ||
-           robots[r][next[r]].corrected_time < robots[*robot][next[*robot]].corrected_time)) {
-        robot = r;
-      }
-    }
-    if (!robot) {
-      break;
-    }
-    mapper.AddFrame(static_cast<int>(*robot), robots[*robot][next[*robot]++]);
+  pipeline::Mapper mapper(SlamOptions{}.Mapper(), static_cast<int>(robots.size()));
+  std::vector<pipeline::FrameSource> sources;
+  for (const std::vector<Frame>& frames : robots) {
+    sources.push_back(pipeline::FramesOf(frames));
   }
+  EXPECT_TRUE(pipeline::InterleaveFrames(std::move(sources), [&](int robot, const Frame& frame) {
+                mapper.AddFrame(robot, frame);
+              }).ok());
   return mapper.Finish();
 }
 

@@ -10,8 +10,6 @@ namespace gridslam {
 
 /// log(p / (1 - p)); p in (0, 1).
 inline double ProbabilityToLogOdds(double p) { return std::log(p / (1.0 - p)); }
-/// Inverse of ProbabilityToLogOdds().
-inline double ProbabilityFromLogOdds(double l) { return 1.0 / (1.0 + std::exp(-l)); }
 
 /// Value of a cell no scan has touched.
 constexpr float kUnknownLogOdds = 0.0F;

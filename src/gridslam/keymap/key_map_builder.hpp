@@ -47,7 +47,6 @@ class KeyMapBuilder {
   /// A last key map with the scans not yet in one (nullopt if there are none).
   std::optional<KeyMap> Finish(const RollingWindow& window);
 
-  [[nodiscard]] int NumKeyMaps() const { return next_id_; }
   [[nodiscard]] std::size_t NumPendingScans() const { return pending_.size(); }
 
  private:

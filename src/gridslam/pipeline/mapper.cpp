@@ -7,46 +7,29 @@
 
 namespace gridslam::pipeline {
 
-Mapper::Impl::Impl(const SlamOptions& slam_options, int num_robots)
-    : options(slam_options), describer(slam_options.description) {
+Mapper::Impl::Impl(const MapperOptions& mapper_options, int num_robots)
+    : options(mapper_options),
+      describer(mapper_options.description),
+      graph(num_robots, mapper_options.optimizer.sgd),
+      aligner(graph, mapper_options.matching, mapper_options.loop_closure),
+      selector(mapper_options.loop_closure),
+      arbiter(mapper_options.loop_closure),
+      joiner(mapper_options.loop_closure, mapper_options.graph.loop_uncertainty,
+             mapper_options.optimizer),
+      snapshots(mapper_options.fusion) {
   GRIDSLAM_CHECK(num_robots >= 1) << num_robots;
   robots.resize(static_cast<std::size_t>(num_robots));
-  for (int r = 0; r < num_robots; ++r) {
-    robots[static_cast<std::size_t>(r)].front_end =
-        std::make_unique<scan_matching::FrontEnd>(options.front_end);
-    robots[static_cast<std::size_t>(r)].appearance =
-        std::make_unique<loop_closure::AppearanceIndex>();
-    robot_parent.push_back(r);
+  for (RobotState& robot : robots) {
+    robot.front_end = std::make_unique<scan_matching::FrontEnd>(options.front_end);
+    robot.appearance = std::make_unique<loop_closure::AppearanceIndex>();
   }
-  sgd = std::make_unique<pose_graph::SgdOptimizer>(options.optimizer.sgd);
-}
-
-int Mapper::Impl::FindComponent(int robot) {
-  auto r = static_cast<std::size_t>(robot);
-  while (robot_parent[r] != static_cast<int>(r)) {
-    robot_parent[r] = robot_parent[static_cast<std::size_t>(robot_parent[r])];
-    r = static_cast<std::size_t>(robot_parent[r]);
-  }
-  return static_cast<int>(r);
-}
-
-Eigen::Matrix3d Mapper::Impl::Information(double sigma_xy, double sigma_theta) const {
-  return Eigen::Vector3d(1.0 / (sigma_xy * sigma_xy), 1.0 / (sigma_xy * sigma_xy),
-                         1.0 / (sigma_theta * sigma_theta))
-      .asDiagonal();
-}
-
-std::span<const Eigen::Vector2d> Mapper::Impl::RefinementPoints(const Node& b) const {
-  const auto min_points = static_cast<std::size_t>(options.loop_closure.refinement.min_points);
-  return b.scan_points.size() >= 2 * min_points
-             ? std::span<const Eigen::Vector2d>(b.scan_points)
-             : std::span<const Eigen::Vector2d>(b.description.obstacle_points);
 }
 
 void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   GRIDSLAM_CHECK(robot >= 0 && robot < static_cast<int>(robots.size())) << robot;
   RobotState& state = robots[static_cast<std::size_t>(robot)];
   now = frame.time;
+  graph.SetTime(now);
   ++stats.frames;
   const auto start = std::chrono::steady_clock::now();
   scan_matching::FrontEndStep step = state.front_end->AddFrame(frame);
@@ -55,6 +38,7 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
   }
   state.last_pose = step.T_odom_base;
+  state.last_odometry = frame.has_odometry ? frame.T_odom_base : step.T_odom_base;
   state.last_time = frame.time;
   state.scans.push_back({frame.time, step.T_odom_base, state.travel, -1});
   if (step.inserted || state.fusion_scans.empty()) {
@@ -67,17 +51,15 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
 
 void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   RobotState& state = robots[static_cast<std::size_t>(robot)];
-  const int id = static_cast<int>(nodes.size());
+  const int id = graph.size();
   for (std::size_t s = state.unassigned; s < state.scans.size(); ++s) {
     state.scans[s].node = id;
   }
   state.unassigned = state.scans.size();
   ++stats.key_maps;
 
-  Node node;
-  node.id = id;
+  KeyMapNode node;
   node.robot = robot;
-  node.previous = state.last_node;
   node.travel = state.travel;
   node.time = time;
   node.T_odom_key = key_map.T_odom_key;
@@ -99,109 +81,139 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   if (options.fusion.method == "nearest") {
     node.key_map = std::move(key_map);
   }
-  const bool first = state.last_node < 0;
-  if (first) {
-    // Each robot starts in its own frame (its odometry frame), anchored until joined.
-    node.estimate = node.T_odom_key;
-  } else {
-    const Node& previous = nodes[static_cast<std::size_t>(state.last_node)];
-    node.estimate = previous.estimate * Between(previous.T_odom_key, node.T_odom_key);
-  }
-  nodes.push_back(std::move(node));
-  uncertainty.AddNode();
-  sgd->AddVertex(id, nodes.back().estimate, first);
+  const int previous = graph.LastKeyMap(robot);
+  GRIDSLAM_CHECK(graph.AddKeyMap(std::move(node)) == id);
 
-  if (!first) {
-    const Node& previous = nodes[static_cast<std::size_t>(state.last_node)];
-    const Node& current = nodes.back();
+  if (previous >= 0) {
+    const KeyMapNode& before = graph.node(previous);
+    const KeyMapNode& current = graph.node(id);
     EdgeRecord edge;
-    edge.from = previous.id;
+    edge.from = previous;
     edge.to = id;
-    edge.T_from_to = Between(previous.T_odom_key, current.T_odom_key);
+    edge.T_from_to = Between(before.T_odom_key, current.T_odom_key);
     const double d = edge.T_from_to.translation().norm();
     const GraphOptions& g = options.graph;
     edge.information = Information(g.sequential_sigma_xy + g.sequential_sigma_xy_per_m * d,
                                    g.sequential_sigma_theta + g.sequential_sigma_theta_per_m * d);
-    if (g.sequential_edges == "alignment" && previous.alignable && current.alignable) {
+    if (g.sequential_edges == "alignment" && before.alignable && current.alignable) {
       start = std::chrono::steady_clock::now();
-      const std::optional<Pose2> aligned = TryAlign(previous.id, id, nullptr);
+      const std::optional<Alignment> aligned = aligner.Align(previous, id, nullptr, 0.0);
       stats.seconds_alignment += SecondsSince(start);
-      if (aligned.has_value() && IsApprox(*aligned, edge.T_from_to, 0.1, 0.02)) {
-        edge.T_from_to = *aligned;
+      if (aligned.has_value() && IsApprox(aligned->T_i_k, edge.T_from_to, 0.1, 0.02)) {
+        edge.T_from_to = aligned->T_i_k;
         ++stats.sequential_aligned;
       }
     }
-    AddEdge(edge, d);
+    graph.AddEdge(edge, d);
   }
-  state.last_node = id;
-  ++state.num_nodes;
 
   bool changed = false;
-  large_correction_ = false;
-  if (options.loop_closure.enabled && nodes.back().alignable) {
+  bool large_correction = false;
+  if (options.loop_closure.enabled && graph.node(id).alignable) {
     start = std::chrono::steady_clock::now();
-    changed = SearchPriorCandidates(id) || changed;
+    const PriorSearch prior = SearchPriorCandidates(id);
+    changed = prior.changed;
+    large_correction = prior.large_correction;
     const int every = options.loop_closure.appearance_every;
-    if (every > 0 && state.num_nodes % every == 0) {
-      changed = SearchAppearance(id) || changed;
+    if (every > 0 && graph.NumKeyMaps(robot) % every == 0) {
+      changed = SearchAppearance(id, prior.tried) || changed;
     }
     stats.seconds_alignment += SecondsSince(start);
     // Spaced along the path: a place seen by dozens of overlapping key maps would otherwise fill
     // the k nearest neighbours of a query with near-duplicates and defeat the index's vote.
     if (state.travel - state.appearance_travel >= options.loop_closure.appearance_spacing) {
-      state.appearance->Add(id, nodes.back().description.features.descriptors);
+      state.appearance->Add(id, graph.node(id).description.features.descriptors);
       state.appearance_travel = state.travel;
     }
   }
-  if (large_correction_ && options.graph.optimize_large_corrections) {
+  if (large_correction && options.graph.optimize_large_corrections) {
     ++stats.online_full_optimizations;
     OptimizeNow();
   } else if (changed) {
     Iterate(options.graph.online_iterations);
   }
-}
-
-void Mapper::Impl::AddEdge(EdgeRecord edge, double uncertainty_weight) {
-  sgd->AddEdge(edge.from, edge.to, edge.T_from_to, edge.information);
-  uncertainty.AddEdge(edge.from, edge.to, uncertainty_weight);
-  edges.push_back(edge);
+  SyncStats();
 }
 
 void Mapper::Impl::Iterate(int iterations) {
-  if (iterations <= 0) {
-    return;
-  }
   const auto start = std::chrono::steady_clock::now();
-  sgd->Iterate(iterations);
-  SyncEstimates();
+  graph.Iterate(iterations);
   stats.seconds_optimization += SecondsSince(start);
 }
 
-void Mapper::Impl::SyncEstimates() {
-  const pose_graph::PoseGraph& graph = sgd->graph();
-  for (Node& node : nodes) {
-    node.estimate = graph.vertex(graph.IndexOf(node.id)).T_map_v;
-  }
+void Mapper::Impl::OptimizeNow() {
+  const auto start = std::chrono::steady_clock::now();
+  graph.Optimize(options.optimizer);
+  stats.seconds_optimization += SecondsSince(start);
 }
 
-void Mapper::Impl::RebuildOptimizer() {
-  pose_graph::PoseGraph graph;
-  std::vector<bool> anchored(robots.size(), false);
-  for (const Node& node : nodes) {
-    const int component = FindComponent(node.robot);
-    const bool fix = !anchored[static_cast<std::size_t>(component)];
-    anchored[static_cast<std::size_t>(component)] = true;
-    graph.AddVertex(node.id, node.estimate, fix);
+void Mapper::Impl::SyncStats() {
+  const AlignerCounters& counters = aligner.counters();
+  stats.verified = counters.verified;
+  stats.prior_refined = counters.prior_refined;
+  stats.prior_searches = counters.prior_searches;
+  stats.accepted = graph.loop_edges_added();
+  stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);
+  stats.pruned = graph.NumClosures(ClosureOutcome::kPruned);
+  stats.joins = static_cast<long>(joins.size());
+}
+
+Pose2 Mapper::Impl::MapToFrontEnd(int robot) const {
+  const int last = graph.LastKeyMap(robot);
+  if (last < 0) {
+    return Pose2();
   }
-  for (const EdgeRecord& edge : edges) {
-    if (edge.active) {
-      graph.AddEdge(edge.from, edge.to, edge.T_from_to, edge.information);
+  return graph.Estimate(last) * graph.node(last).T_odom_key.Inverse();
+}
+
+MapSnapshot Mapper::Impl::Snapshot() {
+  MapSnapshot snapshot;
+  snapshot.time = now;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    snapshot.trajectories.push_back(
+        CorrectedTrajectory(static_cast<int>(r), options.graph.interpolate_corrections));
+  }
+  snapshot.component_of_robot = ComponentNumbers();
+  // Key maps whose scans are complete enter the incremental fusion once.
+  for (RobotState& state : robots) {
+    while (state.unfused < state.fusion_scans.size()) {
+      const int id = state.scans[state.fusion_scans[state.unfused].scan_index].node;
+      if (id < 0) {
+        break;  // after the robot's newest key map
+      }
+      const Pose2 T_key_odom = graph.node(id).T_odom_key.Inverse();
+      std::vector<fusion::PosedScan> posed;
+      for (; state.unfused < state.fusion_scans.size(); ++state.unfused) {
+        const FusionScan& f = state.fusion_scans[state.unfused];
+        if (state.scans[f.scan_index].node != id) {
+          break;
+        }
+        posed.push_back(
+            {T_key_odom * state.scans[f.scan_index].T_odom_base, f.T_base_laser, &f.scan});
+      }
+      snapshots.AddKeyMap(id, posed);
     }
   }
-  sgd = std::make_unique<pose_graph::SgdOptimizer>(graph, options.optimizer.sgd);
+  int components = 0;
+  for (const int c : snapshot.component_of_robot) {
+    components = std::max(components, c + 1);
+  }
+  SnapshotFusion::UpdateStats update;
+  for (int c = 0; c < components; ++c) {
+    std::vector<SnapshotFusion::Placed> placed;
+    for (const KeyMapNode& node : graph.nodes()) {
+      if (snapshot.component_of_robot[static_cast<std::size_t>(node.robot)] == c) {
+        placed.push_back({node.id, graph.Estimate(node.id)});
+      }
+    }
+    snapshot.maps.push_back(snapshots.Update(c, placed, update));
+  }
+  snapshot.key_maps_added = update.added;
+  snapshot.key_maps_replaced = update.replaced;
+  return snapshot;
 }
 
-Mapper::Mapper(const SlamOptions& options, int num_robots)
+Mapper::Mapper(const MapperOptions& options, int num_robots)
     : impl_(std::make_unique<Impl>(options, num_robots)) {}
 
 Mapper::~Mapper() = default;
@@ -211,5 +223,29 @@ void Mapper::AddFrame(int robot, const Frame& frame) { impl_->AddFrame(robot, fr
 MapperResult Mapper::Finish() { return impl_->Finish(); }
 
 const MapperStats& Mapper::Stats() const { return impl_->stats; }
+
+std::optional<Pose2> Mapper::CurrentPose(int robot) const {
+  const RobotState& state = impl_->robots.at(static_cast<std::size_t>(robot));
+  if (!state.last_pose.has_value()) {
+    return std::nullopt;
+  }
+  return impl_->MapToFrontEnd(robot) * *state.last_pose;
+}
+
+Pose2 Mapper::MapToOdom(int robot) const {
+  const std::optional<Pose2> pose = CurrentPose(robot);
+  if (!pose.has_value()) {
+    return Pose2();
+  }
+  return *pose * impl_->robots[static_cast<std::size_t>(robot)].last_odometry.Inverse();
+}
+
+int Mapper::MapComponent(int robot) const {
+  return impl_->ComponentNumbers().at(static_cast<std::size_t>(robot));
+}
+
+MapSnapshot Mapper::Snapshot() { return impl_->Snapshot(); }
+
+std::vector<MapperEvent> Mapper::DrainEvents() { return impl_->graph.DrainEvents(); }
 
 }  // namespace gridslam::pipeline

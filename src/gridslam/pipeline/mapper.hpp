@@ -6,6 +6,17 @@
 // robots that have not met yet. Accepted closures are optimized online with SGD; Finish() polishes
 // the graph, prunes inconsistent loop edges, derives every scan's corrected pose and fuses the
 // global grid. One code path for online and batch use: batch = AddFrame in log order + Finish.
+//
+// The mapper composes its parts (each with its own contract and tests): the key-map graph
+// (key_map_graph.hpp, the only writer of vertices, edges and estimates), the aligner
+// (key_map_aligner.hpp), the candidate selector (candidate_selector.hpp), the closure arbiter
+// (loop_closure/closure_arbiter.hpp: gates, consistent groups, waiting queues) and the component
+// joiner (component_joiner.hpp).
+//
+// Online API (docs/online_api.md): between frames, CurrentPose / MapToOdom give each robot's
+// pose in its map frame, Snapshot() the trajectories and the fused maps so far (incremental:
+// only key maps that moved are fused again), DrainEvents() what happened since the last call.
+// Not thread-safe: call everything from one thread (or guard the Mapper with a mutex).
 #pragma once
 
 #include <memory>
@@ -15,7 +26,8 @@
 
 #include "gridslam/common/time.hpp"
 #include "gridslam/grid/grid2d.hpp"
-#include "gridslam/pipeline/slam_options.hpp"
+#include "gridslam/pipeline/mapper_options.hpp"
+#include "gridslam/pipeline/mapper_records.hpp"
 #include "gridslam/pose_graph/pose_graph.hpp"
 #include "gridslam/scan/laser_scan.hpp"
 
@@ -25,25 +37,6 @@ namespace gridslam::pipeline {
 struct TrajectoryPose {
   Time time;
   Pose2 T_map_base;
-};
-
-/// One loop-closure attempt that got as far as a verified alignment.
-struct ClosureRecord {
-  int from = 0;  ///< Older key map (vertex id).
-  int to = 0;    ///< Newer key map.
-  Pose2 T_from_to;
-  std::string outcome;      ///< accepted, gate, pending, joined, pruned.
-  bool appearance = false;  ///< Found by the appearance search (no prior).
-};
-
-/// When two robots' graphs were joined.
-struct JoinRecord {
-  int robot_a = 0;
-  int robot_b = 0;
-  Time time;         ///< Time of the frame that completed the join.
-  int vertex_a = 0;  ///< The first matched key maps.
-  int vertex_b = 0;
-  int matches = 0;  ///< Consistent matches used.
 };
 
 struct MapperStats {
@@ -84,10 +77,25 @@ struct MapperResult {
   MapperStats stats;
 };
 
+/// The map so far (Mapper::Snapshot).
+struct MapSnapshot {
+  Time time;  ///< Time of the latest frame.
+  /// Per robot, every scan so far at its current corrected pose (no interpolation between
+  /// key maps: each scan follows its key map; scans after the newest key map follow it).
+  std::vector<std::vector<TrajectoryPose>> trajectories;
+  std::vector<int> component_of_robot;  ///< As MapperResult::component_of_robot.
+  /// Log-odds grid per map component: each key map's scans, fused once in the key map's frame
+  /// and placed at its current estimate (re-placed only when the estimate moved by more than a
+  /// cell). Scans not yet in a key map are not in it.
+  std::vector<Grid2D<float>> maps;
+  long key_maps_replaced = 0;  ///< Key maps placed again (moved) by this snapshot.
+  long key_maps_added = 0;     ///< Key maps placed for the first time by this snapshot.
+};
+
 class Mapper {
  public:
-  /// `options` must be valid. `num_robots` >= 1.
-  Mapper(const SlamOptions& options, int num_robots);
+  /// `options` must be valid (SlamOptions::Validate). `num_robots` >= 1.
+  Mapper(const MapperOptions& options, int num_robots);
   ~Mapper();
   Mapper(const Mapper&) = delete;
   Mapper& operator=(const Mapper&) = delete;
@@ -99,6 +107,24 @@ class Mapper {
   MapperResult Finish();
   /// Current statistics (also during the run).
   [[nodiscard]] const MapperStats& Stats() const;
+
+  // Online API: valid at any time between calls to AddFrame (and after Finish).
+  /// T_map_base of the robot's latest frame in its map frame (the frame of its map component),
+  /// nullopt before its first frame.
+  [[nodiscard]] std::optional<Pose2> CurrentPose(int robot) const;
+  /// T_map_odom: maps the robot's odometry frame (Frame::T_odom_base's) into its map frame,
+  /// so that MapToOdom * the latest frame's T_odom_base = CurrentPose (what a ROS node would
+  /// publish as map -> odom). Recordings without odometry: the front end's frame stands in.
+  /// Identity before the robot's first frame.
+  [[nodiscard]] Pose2 MapToOdom(int robot) const;
+  /// The robot's map component (robots with the same value share one map frame; numbered as in
+  /// MapperResult::component_of_robot).
+  [[nodiscard]] int MapComponent(int robot) const;
+  /// Trajectories and maps so far. Cost: the scans (poses) plus the key maps that were added or
+  /// moved since the last snapshot (fusion).
+  MapSnapshot Snapshot();
+  /// The events since the last call, oldest first.
+  std::vector<MapperEvent> DrainEvents();
 
  private:
   struct Impl;

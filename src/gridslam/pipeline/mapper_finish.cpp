@@ -1,82 +1,42 @@
 // The end of a Mapper run (DESIGN.md §1.3, §1.7, §1.8): final optimization with pruning of loop
-// edges that the optimum cannot explain, every scan's corrected pose from its key map, and the
-// fused global grid of every map component.
+// edges that the optimum cannot explain (KeyMapGraph::OptimizeAndPrune), every scan's corrected
+// pose from its key map, and the fused global grid of every map component.
 #include <algorithm>
 #include <map>
 
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
-#include "gridslam/pose_graph/edge_error.hpp"
-#include "gridslam/pose_graph/optimizer.hpp"
 
 namespace gridslam::pipeline {
 
 void Mapper::Impl::FinalOptimization() {
   const auto start = std::chrono::steady_clock::now();
-  for (int round = 0; round < options.graph.prune_rounds; ++round) {
-    RebuildOptimizer();  // graph with the current estimates, active edges, one anchor each
-    pose_graph::PoseGraph graph = sgd->graph();
-    if (options.graph.final_method != "none") {
-      pose_graph::OptimizerOptions optimizer = options.optimizer;
-      optimizer.method = options.graph.final_method;
-      pose_graph::Optimize(graph, optimizer);
-    }
-    for (Node& node : nodes) {
-      node.estimate = graph.vertex(graph.IndexOf(node.id)).T_map_v;
-    }
-    stats.chi2_final = pose_graph::Chi2(graph);
-    // Loop edges the optimum cannot explain are removed, the worst first.
-    int edge_index = 0;
-    int worst = -1;
-    double worst_chi2 = options.loop_closure.prune_chi2;
-    std::vector<int> active_to_record;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      if (!edges[e].active) {
-        continue;
-      }
-      if (edges[e].loop) {
-        const double chi2 = pose_graph::EdgeChi2(graph, edge_index);
-        if (chi2 > worst_chi2) {
-          worst_chi2 = chi2;
-          worst = static_cast<int>(e);
-        }
-      }
-      ++edge_index;
-    }
-    if (worst < 0) {
-      break;
-    }
-    // Remove every loop edge above the threshold when it is far above, else only the worst.
-    edges[static_cast<std::size_t>(worst)].active = false;
-    const int closure = edges[static_cast<std::size_t>(worst)].closure;
-    if (closure >= 0) {
-      closures[static_cast<std::size_t>(closure)].outcome = "pruned";
-    }
-    ++stats.pruned;
-  }
-  RebuildOptimizer();
+  const KeyMapGraph::FinalResult final_result =
+      graph.OptimizeAndPrune(options.optimizer, options.graph.final_method,
+                             options.graph.prune_rounds, options.loop_closure.prune_chi2);
+  stats.chi2_final = final_result.chi2;
   stats.seconds_final += SecondsSince(start);
 }
 
-std::vector<TrajectoryPose> Mapper::Impl::CorrectedTrajectory(int robot) const {
+std::vector<TrajectoryPose> Mapper::Impl::CorrectedTrajectory(int robot, bool interpolate) const {
   const RobotState& state = robots[static_cast<std::size_t>(robot)];
   std::vector<TrajectoryPose> trajectory;
   trajectory.reserve(state.scans.size());
   // Drift correction of a key map: maps the robot's front-end frame into the map frame.
   const auto correction = [&](int id) {
-    const Node& n = nodes[static_cast<std::size_t>(id)];
-    return n.estimate * n.T_odom_key.Inverse();
+    return graph.Estimate(id) * graph.node(id).T_odom_key.Inverse();
   };
+  const int last = graph.LastKeyMap(robot);
   for (const ScanRecord& scan : state.scans) {
-    const int id = scan.node >= 0 ? scan.node : state.last_node;
+    const int id = scan.node >= 0 ? scan.node : last;
     if (id < 0) {
       trajectory.push_back({scan.time, scan.T_odom_base});
       continue;
     }
-    const Node& node = nodes[static_cast<std::size_t>(id)];
+    const KeyMapNode& node = graph.node(id);
     Pose2 C = correction(id);
-    if (options.graph.interpolate_corrections && node.previous >= 0) {
-      const Node& previous = nodes[static_cast<std::size_t>(node.previous)];
+    if (interpolate && node.previous >= 0) {
+      const KeyMapNode& previous = graph.node(node.previous);
       const double span = node.travel - previous.travel;
       if (span > 1e-6) {
         const double alpha = std::clamp((scan.travel - previous.travel) / span, 0.0, 1.0);
@@ -86,6 +46,18 @@ std::vector<TrajectoryPose> Mapper::Impl::CorrectedTrajectory(int robot) const {
     trajectory.push_back({scan.time, C * scan.T_odom_base});
   }
   return trajectory;
+}
+
+std::vector<int> Mapper::Impl::ComponentNumbers() const {
+  // Map components numbered 0, 1, ... in order of their lowest robot.
+  std::map<int, int> component_index;
+  std::vector<int> numbers;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const int root = graph.RobotComponent(static_cast<int>(r));
+    const auto it = component_index.emplace(root, static_cast<int>(component_index.size())).first;
+    numbers.push_back(it->second);
+  }
+  return numbers;
 }
 
 MapperResult Mapper::Impl::Finish() {
@@ -100,34 +72,32 @@ MapperResult Mapper::Impl::Finish() {
 
   MapperResult result;
   for (std::size_t r = 0; r < robots.size(); ++r) {
-    result.trajectories.push_back(CorrectedTrajectory(static_cast<int>(r)));
+    result.trajectories.push_back(
+        CorrectedTrajectory(static_cast<int>(r), options.graph.interpolate_corrections));
   }
-  result.graph = sgd->graph();
-  for (const Node& node : nodes) {
+  result.graph = graph.ActiveGraph();
+  for (const KeyMapNode& node : graph.nodes()) {
     result.vertex_robot.push_back(node.robot);
   }
-  // Map components numbered 0, 1, ... in order of their lowest robot.
-  std::map<int, int> component_index;
-  for (std::size_t r = 0; r < robots.size(); ++r) {
-    const int root = FindComponent(static_cast<int>(r));
-    const auto it = component_index.emplace(root, static_cast<int>(component_index.size())).first;
-    result.component_of_robot.push_back(it->second);
+  result.component_of_robot = ComponentNumbers();
+  int components = 0;
+  for (const int c : result.component_of_robot) {
+    components = std::max(components, c + 1);
   }
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t c = 0; c < component_index.size(); ++c) {
+  for (int c = 0; c < components; ++c) {
     if (options.fusion.method == "nearest") {
       std::vector<fusion::PosedKeyMap> posed;
-      for (const Node& node : nodes) {
-        if (result.component_of_robot[static_cast<std::size_t>(node.robot)] ==
-            static_cast<int>(c)) {
-          posed.push_back({node.estimate, &node.key_map});
+      for (const KeyMapNode& node : graph.nodes()) {
+        if (result.component_of_robot[static_cast<std::size_t>(node.robot)] == c) {
+          posed.push_back({graph.Estimate(node.id), &node.key_map});
         }
       }
       result.maps.push_back(fusion::FuseNearestKeyMap(posed, options.fusion));
     } else {
       std::vector<fusion::PosedScan> posed;
       for (std::size_t r = 0; r < robots.size(); ++r) {
-        if (result.component_of_robot[r] != static_cast<int>(c)) {
+        if (result.component_of_robot[r] != c) {
           continue;
         }
         for (const FusionScan& f : robots[r].fusion_scans) {
@@ -139,7 +109,8 @@ MapperResult Mapper::Impl::Finish() {
     }
   }
   stats.seconds_fusion += SecondsSince(start);
-  result.closures = closures;
+  SyncStats();
+  result.closures = graph.closures();
   result.joins = joins;
   result.stats = stats;
   return result;

@@ -1,51 +1,28 @@
-// Internal state of the Mapper (mapper.hpp), shared by its implementation files:
-// mapper.cpp (frames, key maps, sequential edges), mapper_closures.cpp (loop closures, the
-// appearance search, joining robots), mapper_finish.cpp (final optimization, corrected poses,
-// fusion). Not part of the API.
+// Internal state of the Mapper (mapper.hpp), shared by its implementation files: mapper.cpp
+// (frames, key maps, sequential edges, the online API), mapper_closures.cpp (the prior-based
+// and the appearance search for loop closures, handing their alignments to the arbiter),
+// mapper_finish.cpp (final optimization, corrected poses, fusion). The decisions live in the
+// parts: KeyMapGraph, FeatureAligner, CandidateSelector, loop_closure::ClosureArbiter,
+// ComponentJoiner. Not part of the API.
 #pragma once
 
 #include <chrono>
 #include <memory>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include "gridslam/description/keymap_describer.hpp"
-#include "gridslam/keymap/key_map.hpp"
 #include "gridslam/loop_closure/appearance_index.hpp"
-#include "gridslam/loop_closure/uncertainty_graph.hpp"
-#include "gridslam/matching/grid_verification.hpp"
+#include "gridslam/loop_closure/closure_arbiter.hpp"
+#include "gridslam/pipeline/candidate_selector.hpp"
+#include "gridslam/pipeline/component_joiner.hpp"
+#include "gridslam/pipeline/key_map_aligner.hpp"
+#include "gridslam/pipeline/key_map_graph.hpp"
 #include "gridslam/pipeline/mapper.hpp"
-#include "gridslam/pose_graph/sgd_optimizer.hpp"
+#include "gridslam/pipeline/snapshot_fusion.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
 namespace gridslam::pipeline {
-
-/// A key map as a graph vertex.
-struct Node {
-  int id = 0;
-  int robot = 0;
-  int previous = -1;    ///< The robot's previous key map (vertex id), -1 for its first.
-  double travel = 0.0;  ///< The robot's path length at the key map [m].
-  Time time;
-  Pose2 T_odom_key;        ///< In the robot's front-end frame.
-  Pose2 estimate;          ///< T_map_key, current estimate.
-  keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
-  description::KeyMapDescription description;
-  /// Returns of the key map's own scans in its frame, for refinement (RefinementOptions::points).
-  std::vector<Eigen::Vector2d> scan_points;
-  bool alignable = false;  ///< Enough features to be aligned.
-};
-
-struct EdgeRecord {
-  int from = 0;
-  int to = 0;
-  Pose2 T_from_to;
-  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
-  bool loop = false;
-  bool active = true;
-  int closure = -1;  ///< Index into closures_ for loop edges.
-};
 
 struct ScanRecord {
   Time time;
@@ -62,90 +39,64 @@ struct FusionScan {
 
 struct RobotState {
   std::unique_ptr<scan_matching::FrontEnd> front_end;
-  /// The robot's key maps for the other robots' appearance search (mapper_join.cpp): one index
-  /// per robot, so a query's nearest neighbours are not its own robot's near-duplicates.
+  /// The robot's key maps for the appearance search (mapper_closures.cpp): one index per robot,
+  /// so a query's nearest neighbours are not its own robot's near-duplicates.
   std::unique_ptr<loop_closure::AppearanceIndex> appearance;
   double appearance_travel = -1e300;  ///< Path length at the last key map in `appearance`.
   std::vector<ScanRecord> scans;
   std::size_t unassigned = 0;  ///< First scan not yet given to a key map.
   std::vector<FusionScan> fusion_scans;
-  int last_node = -1;
-  int num_nodes = 0;
+  std::size_t unfused = 0;  ///< First fusion scan not yet given to the snapshot fusion.
   double travel = 0.0;
-  std::optional<Pose2> last_pose;
+  std::optional<Pose2> last_pose;  ///< Front-end pose of the latest frame.
+  /// Odometry pose of the latest frame (its front-end pose when the recording has none).
+  Pose2 last_odometry;
   Time last_time;
 };
 
-/// A verified match between two robots' graphs that are not joined yet.
-struct PendingJoin {
-  int i = 0;  ///< Vertex of the older component.
-  int k = 0;  ///< Vertex of the newer key map's component.
-  Pose2 T_i_k;
+/// What the prior-based search did for a key map.
+struct PriorSearch {
+  std::vector<int> tried;  ///< The candidates aligned (left out of the appearance search).
+  bool changed = false;    ///< Accepted closures that disagree with the estimate: optimize online.
+  bool large_correction = false;  ///< An accepted closure corrects beyond the gate floor.
 };
 
 struct Mapper::Impl {
-  Impl(const SlamOptions& options, int num_robots);
+  Impl(const MapperOptions& options, int num_robots);
 
   // mapper.cpp
   void AddFrame(int robot, const Frame& frame);
   void ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time);
-  void AddEdge(EdgeRecord edge, double uncertainty);
   void Iterate(int iterations);
-  void SyncEstimates();
-  void RebuildOptimizer();
-  int FindComponent(int robot);
-  [[nodiscard]] Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) const;
-  /// The points of key map b refined against another map's distance field.
-  [[nodiscard]] std::span<const Eigen::Vector2d> RefinementPoints(const Node& b) const;
-
-  // mapper_closures.cpp
-  /// Feature alignment of k to i (refined, verified); with a `prior` (T_i_k predicted), a failed
-  /// feature alignment falls back to RefineFromPrior.
-  /// `uncertainty_distance`: the uncertainty distance between the key maps [m] (sizes the search).
-  std::optional<Pose2> TryAlign(int i, int k, const Pose2* prior,
-                                double uncertainty_distance = 0.0);
-  /// Grid-to-grid refinement from a predicted transform (seeded by a correlative search when the
-  /// uncertainty distance allows a large prediction error), accepted only if well constrained
-  /// and verified.
-  std::optional<Pose2> RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                       const matching::VerificationInput& verification,
-                                       double uncertainty_distance);
-  /// True when an accepted closure calls for online optimization.
-  bool SearchPriorCandidates(int k);
-
-  // mapper_join.cpp
-  bool SearchAppearance(int k);
-  bool AcceptAcrossRobots(int i, int k, const Pose2& T_i_k, std::vector<double>& distance);
-  void Join(int k, const std::vector<PendingJoin>& matches);
-  /// After a join: aligns each key map of the moved robots (`moved`, by robot) with the nearest
-  /// key maps of the others; keeps the matches that agree with min_join_matches others.
-  void CatchUp(const std::vector<bool>& moved, std::vector<PendingJoin> trusted);
   /// Full optimization of the current graph (options.optimizer), then SGD restarts from it.
   void OptimizeNow();
+  void SyncStats();
+  /// Maps the robot's front-end frame into its map frame (the newest key map's correction).
+  [[nodiscard]] Pose2 MapToFrontEnd(int robot) const;
+  MapSnapshot Snapshot();
+
+  // mapper_closures.cpp
+  PriorSearch SearchPriorCandidates(int k);
+  /// True when an accepted closure calls for online optimization.
+  bool SearchAppearance(int k, const std::vector<int>& prior_tried);
+  bool OfferWithinMap(const loop_closure::Match& match, double uncertainty_distance);
 
   // mapper_finish.cpp
   MapperResult Finish();
   void FinalOptimization();
-  std::vector<TrajectoryPose> CorrectedTrajectory(int robot) const;
+  std::vector<TrajectoryPose> CorrectedTrajectory(int robot, bool interpolate) const;
+  [[nodiscard]] std::vector<int> ComponentNumbers() const;
 
-  SlamOptions options;
+  MapperOptions options;
   description::KeyMapDescriber describer;
   std::vector<RobotState> robots;
-  std::vector<int> robot_parent;  ///< Union-find of robots joined into one map.
-  std::vector<Node> nodes;
-  std::vector<EdgeRecord> edges;
-  std::vector<ClosureRecord> closures;
+  KeyMapGraph graph;
+  FeatureAligner aligner;
+  CandidateSelector selector;
+  loop_closure::ClosureArbiter arbiter;
+  ComponentJoiner joiner;
+  SnapshotFusion snapshots;
   std::vector<JoinRecord> joins;
-  std::vector<PendingJoin> pending;
-  /// Verified appearance matches between robots of one map that disagree with the estimate,
-  /// awaiting independent matches that agree with them (mapper_join.cpp).
-  std::vector<PendingJoin> across;
-  std::vector<PendingJoin> gated;  ///< Verified closures outside the gate, awaiting support.
-  std::vector<int> prior_tried;    ///< Key maps the last prior-based search aligned.
-  bool searched_ = false;          ///< The last prior refinement was seeded by a search.
-  bool large_correction_ = false;  ///< The last search accepted a closure beyond the gate floor.
-  loop_closure::UncertaintyGraph uncertainty;
-  std::unique_ptr<pose_graph::SgdOptimizer> sgd;
   MapperStats stats;
   Time now;
 };

@@ -5,6 +5,12 @@
 #include <string>
 
 #include "gridslam/common/options.hpp"
+#include "gridslam/description/description_options.hpp"
+#include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/loop_closure/loop_closure_options.hpp"
+#include "gridslam/matching/align.hpp"
+#include "gridslam/pose_graph/optimizer.hpp"
+#include "gridslam/scan_matching/front_end_options.hpp"
 
 namespace gridslam::pipeline {
 
@@ -79,6 +85,18 @@ struct GraphOptions {
                                      "graph.final_method is gn, lm, sgd+gn, sgd or none"));
     return Require(prune_rounds >= 1, "graph.prune_rounds >= 1");
   }
+};
+
+/// What the Mapper needs of the configuration: the sections of SlamOptions it uses (documented
+/// there; SlamOptions::Mapper() builds it). Each is validated by SlamOptions::Validate().
+struct MapperOptions {
+  scan_matching::FrontEndOptions front_end;       ///< Scan matching, local map, key maps.
+  description::DescriptionOptions description;    ///< Key-map description (DT + SURF).
+  matching::AlignOptions matching;                ///< Key-map alignment.
+  pose_graph::OptimizerOptions optimizer;         ///< Pose-graph optimization.
+  loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
+  GraphOptions graph;                             ///< Building and optimizing the graph.
+  fusion::FusionOptions fusion;                   ///< Global map fusion.
 };
 
 }  // namespace gridslam::pipeline

@@ -51,6 +51,10 @@ struct SlamOptions {
     v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");
     v.Section("split", split, "Cutting one log into several robots (gridslam split)");
   }
+  /// The sections the mapper uses (pipeline::Mapper takes only these).
+  [[nodiscard]] pipeline::MapperOptions Mapper() const {
+    return {front_end, description, matching, optimizer, loop_closure, graph, fusion};
+  }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(log.Validate());
     GRIDSLAM_RETURN_IF_ERROR(front_end.Validate());

@@ -62,7 +62,6 @@ class PurePursuit {
   void Control(RobotState& state, double dt);
   /// True once the robot has reached s_end.
   [[nodiscard]] bool Finished() const;
-  [[nodiscard]] double Progress() const { return progress_; }
 
  private:
   const Route& route_;

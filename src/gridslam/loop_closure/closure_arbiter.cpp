@@ -1,0 +1,199 @@
+#include "gridslam/loop_closure/closure_arbiter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "gridslam/common/logging.hpp"
+
+namespace gridslam::loop_closure {
+namespace {
+
+/// `stored` oriented from group `from` to group `to` (group = robot or component, given by
+/// `group` of a vertex id), or nullopt if it links other groups.
+template <class Group>
+std::optional<Match> Oriented(const Match& stored, int from, int to, Group group) {
+  const int gi = group(stored.i);
+  const int gk = group(stored.k);
+  if (gi == from && gk == to) {
+    return stored;
+  }
+  if (gi == to && gk == from) {
+    return Match{stored.k, stored.i, stored.T_i_k.Inverse()};
+  }
+  return std::nullopt;
+}
+
+bool Within(const Pose2& loop, double xy, double theta) {
+  return loop.translation().norm() < xy && std::abs(loop.theta()) < theta;
+}
+
+}  // namespace
+
+std::string_view ToString(ClosureOutcome outcome) {
+  switch (outcome) {
+    case ClosureOutcome::kAccepted:
+      return "accepted";
+    case ClosureOutcome::kGated:
+      return "gate";
+    case ClosureOutcome::kPending:
+      return "pending";
+    case ClosureOutcome::kJoined:
+      return "joined";
+    case ClosureOutcome::kPruned:
+      return "pruned";
+  }
+  return "unknown";
+}
+
+Pose2 ClosureError(const Match& match, const GraphView& graph) {
+  return Between(Between(graph.Estimate(match.i), graph.Estimate(match.k)), match.T_i_k);
+}
+
+bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
+  return error.translation().norm() <= options.gate_xy + options.gate_xy_per_m * u &&
+         std::abs(error.theta()) <= options.gate_theta + options.gate_theta_per_m * u;
+}
+
+Pose2 LoopError(const Match& a, const Match& b, const GraphView& graph) {
+  return a.T_i_k * Between(graph.Estimate(a.k), graph.Estimate(b.k)) * b.T_i_k.Inverse() *
+         Between(graph.Estimate(b.i), graph.Estimate(a.i));
+}
+
+bool PairConsistent(const Match& a, const Match& b, const GraphView& graph,
+                    const LoopClosureOptions& options) {
+  const Pose2 loop = LoopError(a, b, graph);
+  const double span =
+      std::max((graph.Estimate(a.k).translation() - graph.Estimate(b.k).translation()).norm(),
+               (graph.Estimate(a.i).translation() - graph.Estimate(b.i).translation()).norm());
+  return Within(loop, options.pairwise_xy + options.gate_xy_per_m * span,
+                options.pairwise_theta + options.gate_theta_per_m * span);
+}
+
+bool Independent(const Match& a, const Match& b, const GraphView& graph, double travel) {
+  return std::abs(graph.Travel(a.i) - graph.Travel(b.i)) >= travel &&
+         std::abs(graph.Travel(a.k) - graph.Travel(b.k)) >= travel;
+}
+
+int Support(const Match& match, const std::vector<Match>& pool, const GraphView& graph,
+            const LoopClosureOptions& options) {
+  return static_cast<int>(std::count_if(pool.begin(), pool.end(), [&](const Match& p) {
+    return Independent(match, p, graph, options.independent_travel) &&
+           PairConsistent(match, p, graph, options);
+  }));
+}
+
+Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_search,
+                                    const GraphView& graph) {
+  Decision decision;
+  decision.error = ClosureError(match, graph);
+  // A closure found by the prior search is never trusted alone: in a wide window a look-alike
+  // place (a row of identical bays) may score best; it needs the support of other closures.
+  decision.in_gate = !from_search && InGate(decision.error, u, options_);
+  decision.accepted = {match};
+  if (decision.in_gate) {
+    decision.verdict = Verdict::kAccept;
+    return decision;
+  }
+  // Outside the gate: once enough recent gated closures agree with each other (the loops they
+  // form with the graph close), the estimate is what was wrong, and they are accepted together
+  // (DESIGN.md 1.6: pairwise consistency of several closures).
+  for (const Match& g : gated_) {
+    if (g.k != match.k && match.k - g.k <= options_.gated_window &&
+        Within(LoopError(match, g, graph), options_.pairwise_xy, options_.pairwise_theta)) {
+      decision.accepted.push_back(g);
+    }
+  }
+  if (static_cast<int>(decision.accepted.size()) < options_.min_consistent_gated) {
+    decision.verdict = Verdict::kWait;
+    decision.accepted.resize(1);
+    gated_.push_back(match);
+    return decision;
+  }
+  decision.verdict = Verdict::kAcceptGroup;
+  const std::vector<Match>& group = decision.accepted;
+  gated_.erase(std::remove_if(gated_.begin(), gated_.end(),
+                              [&](const Match& g) {
+                                return std::any_of(group.begin(), group.end(), [&](const Match& m) {
+                                  return m.i == g.i && m.k == g.k;
+                                });
+                              }),
+               gated_.end());
+  return decision;
+}
+
+Decision ClosureArbiter::OfferWithinMap(const Match& match, double u, const GraphView& graph) {
+  Decision decision;
+  decision.error = ClosureError(match, graph);
+  decision.in_gate =
+      InGate(decision.error, std::min(u, options_.appearance_gate_max_uncertainty), options_);
+  decision.accepted = {match};
+  if (decision.in_gate) {
+    decision.verdict = Verdict::kAccept;
+    return decision;
+  }
+  const double max_correction = std::max(options_.max_correction, options_.max_drift * u);
+  if (decision.error.translation().norm() > max_correction ||
+      std::abs(decision.error.theta()) > options_.max_correction_theta) {
+    decision.verdict = Verdict::kReject;
+    decision.accepted.clear();
+    return decision;
+  }
+  // The estimate disagrees: accept only with independent matches between the same two robots
+  // that agree with this one (then the estimate was wrong; DESIGN.md 1.6 pairwise consistency).
+  const auto robot_of = [&](int id) { return graph.Robot(id); };
+  std::vector<std::size_t> support;
+  for (std::size_t s = 0; s < within_map_.size(); ++s) {
+    const std::optional<Match> p =
+        Oriented(within_map_[s], graph.Robot(match.i), graph.Robot(match.k), robot_of);
+    if (p.has_value() && Independent(match, *p, graph, options_.independent_travel) &&
+        PairConsistent(match, *p, graph, options_)) {
+      support.push_back(s);
+    }
+  }
+  const int needed = std::max(options_.min_join_matches + 1, options_.min_consistent_gated);
+  if (static_cast<int>(support.size()) + 1 < needed) {
+    decision.verdict = Verdict::kWait;
+    within_map_.push_back(match);
+    return decision;
+  }
+  decision.verdict = Verdict::kAcceptGroup;
+  for (auto it = support.rbegin(); it != support.rend(); ++it) {
+    decision.accepted.push_back(within_map_[*it]);
+    within_map_.erase(within_map_.begin() + static_cast<std::ptrdiff_t>(*it));
+  }
+  return decision;
+}
+
+Decision ClosureArbiter::OfferJoin(const Match& match, const GraphView& graph) {
+  Decision decision;
+  decision.accepted = {match};
+  const int other = graph.Component(match.i);
+  const int component = graph.Component(match.k);
+  const auto component_of = [&](int id) { return graph.Component(id); };
+  for (const Match& stored : joinable_) {
+    // A match found from the other side (the other robot's query) counts reversed.
+    const std::optional<Match> p = Oriented(stored, other, component, component_of);
+    if (p.has_value() && Independent(match, *p, graph, options_.independent_travel) &&
+        PairConsistent(match, *p, graph, options_)) {
+      decision.accepted.push_back(*p);
+    }
+  }
+  joinable_.push_back(match);
+  decision.verdict = static_cast<int>(decision.accepted.size()) >= options_.min_join_matches
+                         ? Verdict::kAcceptGroup
+                         : Verdict::kWait;
+  if (decision.verdict == Verdict::kWait) {
+    decision.accepted.resize(1);
+  }
+  return decision;
+}
+
+void ClosureArbiter::ForgetWithinComponents(const GraphView& graph) {
+  joinable_.erase(
+      std::remove_if(joinable_.begin(), joinable_.end(),
+                     [&](const Match& p) { return graph.Component(p.i) == graph.Component(p.k); }),
+      joinable_.end());
+}
+
+}  // namespace gridslam::loop_closure

@@ -1,0 +1,123 @@
+// The closure arbiter (DESIGN.md §1.6): decides what becomes of a verified alignment between two
+// key maps, given the current estimate of the graph. It owns no graph; it reads one through
+// GraphView and answers with a Decision (the matches to turn into loop edges, if any). It holds
+// the three queues of closures that wait for support, each an explicit state:
+//   - gated: prior-based closures outside the consistency gate. Once min_consistent_gated
+//     recent ones form mutually consistent loops with the graph, the estimate was what was
+//     wrong, and they are accepted together;
+//   - within_map: appearance matches inside one map component that disagree with the estimate
+//     (but not by more than max_correction); accepted with enough independent, consistent
+//     matches between the same two robots;
+//   - joinable: matches between two map components not joined yet; min_join_matches
+//     independent, consistent ones join the components (the caller joins them, then calls
+//     ForgetWithinComponents).
+// Contract: the arbiter never changes the graph; the caller adds the accepted matches (in the
+// order given, first the new match) as loop edges. Deterministic: equal inputs, equal answers.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "gridslam/geometry/pose2.hpp"
+#include "gridslam/loop_closure/loop_closure_options.hpp"
+
+namespace gridslam::loop_closure {
+
+/// What became of a closure (ClosureRecord::outcome). ToString gives the report's strings.
+enum class ClosureOutcome {
+  kAccepted,  ///< A loop edge of the graph.
+  kGated,     ///< Outside the gate, waiting for a consistent group ("gate").
+  kPending,   ///< Between components not joined yet ("pending").
+  kJoined,    ///< One of the matches that joined two components.
+  kPruned,    ///< Was a loop edge, removed by the final optimization.
+};
+[[nodiscard]] std::string_view ToString(ClosureOutcome outcome);
+
+/// A verified alignment: the pose of key map k in key map i's frame.
+struct Match {
+  int i = 0;
+  int k = 0;
+  Pose2 T_i_k;
+};
+
+/// What the arbiter reads of the graph (implemented by pipeline::KeyMapGraph, or a test).
+class GraphView {
+ public:
+  virtual ~GraphView() = default;
+  [[nodiscard]] virtual Pose2 Estimate(int id) const = 0;  ///< T_map_key of vertex `id`.
+  [[nodiscard]] virtual double Travel(int id) const = 0;   ///< Path length of its robot [m].
+  [[nodiscard]] virtual int Robot(int id) const = 0;
+  [[nodiscard]] virtual int Component(int id) const = 0;  ///< Map component of its robot.
+};
+
+/// The verdict on one match.
+enum class Verdict {
+  kAccept,       ///< Agrees with the estimate: `accepted` = {the match}.
+  kAcceptGroup,  ///< Disagrees, but with the support of waiting matches: all in `accepted`.
+  kWait,         ///< Queued until other matches support it.
+  kReject,       ///< Refused (an appearance match that would move the map too far).
+};
+
+struct Decision {
+  Verdict verdict = Verdict::kWait;
+  /// The matches to add as loop edges, the new one first (or, for a join, to join with).
+  std::vector<Match> accepted;
+  Pose2 error;  ///< Measured relative to predicted pose (Between(predicted, measured)).
+  bool in_gate = false;
+};
+
+/// Between(predicted, measured): how far the match is from the current estimate.
+[[nodiscard]] Pose2 ClosureError(const Match& match, const GraphView& graph);
+/// The consistency gate: `error` within gate_xy + gate_xy_per_m * u and gate_theta +
+/// gate_theta_per_m * u, u the uncertainty distance between the key maps [m].
+[[nodiscard]] bool InGate(const Pose2& error, double u, const LoopClosureOptions& options);
+/// The loop a.i -> a.k (measured), a.k -> b.k (estimate), b.k -> b.i (measured), b.i -> a.i
+/// (estimate): identity when both matches agree with each other and the estimate on each side.
+[[nodiscard]] Pose2 LoopError(const Match& a, const Match& b, const GraphView& graph);
+/// Pairwise consistency of appearance matches: the loop closes within pairwise_xy/theta plus
+/// the gate's growth per metre of the distance the loop spans on each side.
+[[nodiscard]] bool PairConsistent(const Match& a, const Match& b, const GraphView& graph,
+                                  const LoopClosureOptions& options);
+/// Independent evidence: the key maps of `a` and `b` lie at least `travel` apart along both
+/// paths (an aliased place matches a run of neighbouring key maps, all consistently).
+[[nodiscard]] bool Independent(const Match& a, const Match& b, const GraphView& graph,
+                               double travel);
+/// How many of `pool` are independent of and pairwise consistent with `match`.
+[[nodiscard]] int Support(const Match& match, const std::vector<Match>& pool,
+                          const GraphView& graph, const LoopClosureOptions& options);
+
+class ClosureArbiter {
+ public:
+  explicit ClosureArbiter(const LoopClosureOptions& options) : options_(options) {}
+
+  /// A prior-based closure (the candidate was predicted by the estimate); `u` the uncertainty
+  /// distance between its key maps; `from_search`: found by the correlative prior search, never
+  /// trusted alone (outside the gate by definition). kAccept, kAcceptGroup (with gated closures
+  /// of the last gated_window key maps, which leave the queue) or kWait (queued as gated).
+  Decision OfferPrior(const Match& match, double u, bool from_search, const GraphView& graph);
+
+  /// An appearance match inside one map component; `u` the uncertainty distance. kAccept (in
+  /// the gate, u capped at appearance_gate_max_uncertainty), kReject (would move the map too
+  /// far), kWait or kAcceptGroup (with queued matches between the same two robots).
+  Decision OfferWithinMap(const Match& match, double u, const GraphView& graph);
+
+  /// A match between two components not joined yet. kAcceptGroup when min_join_matches
+  /// independent consistent matches (the new one first; matches found from the other side
+  /// reversed) call for a join, else kWait. The match is queued in both cases.
+  Decision OfferJoin(const Match& match, const GraphView& graph);
+  /// After a join: drops the queued join matches that now lie inside one component.
+  void ForgetWithinComponents(const GraphView& graph);
+
+  [[nodiscard]] const std::vector<Match>& gated() const { return gated_; }
+  [[nodiscard]] const std::vector<Match>& within_map() const { return within_map_; }
+  [[nodiscard]] const std::vector<Match>& joinable() const { return joinable_; }
+  [[nodiscard]] const LoopClosureOptions& options() const { return options_; }
+
+ private:
+  LoopClosureOptions options_;
+  std::vector<Match> gated_;
+  std::vector<Match> within_map_;
+  std::vector<Match> joinable_;
+};
+
+}  // namespace gridslam::loop_closure

@@ -1,0 +1,232 @@
+// The closure arbiter on synthetic graphs (in the style of Cartographer's pose_graph_2d_test):
+// key maps on a line or a square with known estimates; matches are scripted from a ground truth
+// that differs from the estimate where the test wants the estimate to be wrong.
+#include "gridslam/loop_closure/closure_arbiter.hpp"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace gridslam::loop_closure {
+namespace {
+
+/// A graph given by its estimates; travel = distance along the vertex order per robot.
+class FakeGraph : public GraphView {
+ public:
+  int Add(int robot, const Pose2& estimate, double travel, int component = -1) {
+    estimates_.push_back(estimate);
+    robots_.push_back(robot);
+    travel_.push_back(travel);
+    components_.push_back(component < 0 ? robot : component);
+    return static_cast<int>(estimates_.size()) - 1;
+  }
+  [[nodiscard]] Pose2 Estimate(int id) const override { return estimates_.at(Index(id)); }
+  [[nodiscard]] double Travel(int id) const override { return travel_.at(Index(id)); }
+  [[nodiscard]] int Robot(int id) const override { return robots_.at(Index(id)); }
+  [[nodiscard]] int Component(int id) const override { return components_.at(Index(id)); }
+  void SetComponent(int robot, int component) {
+    for (std::size_t v = 0; v < robots_.size(); ++v) {
+      if (robots_[v] == robot) {
+        components_[v] = component;
+      }
+    }
+  }
+
+ private:
+  static std::size_t Index(int id) { return static_cast<std::size_t>(id); }
+  std::vector<Pose2> estimates_;
+  std::vector<int> robots_;
+  std::vector<double> travel_;
+  std::vector<int> components_;
+};
+
+/// The measurement of k in i's frame if the true poses were `truth_i`, `truth_k`.
+Match Measure(int i, int k, const Pose2& truth_i, const Pose2& truth_k) {
+  return {i, k, Between(truth_i, truth_k)};
+}
+
+/// One robot driving along x, a key map per metre; estimates of key maps >= `drift_from` are
+/// shifted by `drift` (the truth is the straight line).
+struct Line {
+  FakeGraph graph;
+  std::vector<Pose2> truth;
+  Line(int n, int drift_from, const Pose2& drift) {
+    for (int v = 0; v < n; ++v) {
+      truth.emplace_back(v * 1.0, 0.0, 0.0);
+      graph.Add(0, v >= drift_from ? drift * truth.back() : truth.back(), v * 1.0);
+    }
+  }
+  [[nodiscard]] Match Closure(int i, int k) const {
+    return Measure(i, k, truth[static_cast<std::size_t>(i)], truth[static_cast<std::size_t>(k)]);
+  }
+};
+
+TEST(ClosureOutcome, ToStringKeepsTheReportStrings) {
+  EXPECT_EQ(ToString(ClosureOutcome::kAccepted), "accepted");
+  EXPECT_EQ(ToString(ClosureOutcome::kGated), "gate");
+  EXPECT_EQ(ToString(ClosureOutcome::kPending), "pending");
+  EXPECT_EQ(ToString(ClosureOutcome::kJoined), "joined");
+  EXPECT_EQ(ToString(ClosureOutcome::kPruned), "pruned");
+}
+
+TEST(ClosureArbiter, GateAcceptsAClosureThatAgreesWithTheEstimate) {
+  const Line line(40, 1000, Pose2());
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  const Decision d = arbiter.OfferPrior(line.Closure(2, 30), /*u=*/5.0, false, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAccept);
+  EXPECT_TRUE(d.in_gate);
+  ASSERT_EQ(d.accepted.size(), 1U);
+  EXPECT_EQ(d.accepted[0].i, 2);
+  EXPECT_TRUE(arbiter.gated().empty());
+}
+
+TEST(ClosureArbiter, GateRejectsAClosureFarFromTheEstimateAndQueuesIt) {
+  // The estimate says the newer key maps are 1 m off: the closure disagrees by 1 m.
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  const Decision d = arbiter.OfferPrior(line.Closure(2, 30), 2.0, false, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kWait);
+  EXPECT_FALSE(d.in_gate);
+  EXPECT_NEAR(d.error.translation().norm(), 1.0, 1e-9);
+  ASSERT_EQ(arbiter.gated().size(), 1U);
+  // The gate grows with the uncertainty distance: at u = 20 m the same error passes.
+  ClosureArbiter wide{LoopClosureOptions{}};
+  EXPECT_EQ(wide.OfferPrior(line.Closure(2, 30), 20.0, false, line.graph).verdict,
+            Verdict::kAccept);
+}
+
+TEST(ClosureArbiter, AClosureFoundBySearchIsNeverTrustedAlone) {
+  const Line line(40, 1000, Pose2());
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(2, 30), 5.0, /*from_search=*/true, line.graph).verdict,
+            Verdict::kWait);
+}
+
+TEST(ClosureArbiter, AcceptsAConsistentGroupOfGatedClosures) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  LoopClosureOptions options;
+  ClosureArbiter arbiter(options);
+  ASSERT_EQ(options.min_consistent_gated, 3);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(2, 30), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(5, 31), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  const Decision d = arbiter.OfferPrior(line.Closure(8, 32), 2.0, false, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  ASSERT_EQ(d.accepted.size(), 3U);
+  EXPECT_EQ(d.accepted[0].k, 32);  // the new one first
+  EXPECT_EQ(d.accepted[1].k, 30);
+  EXPECT_EQ(d.accepted[2].k, 31);
+  EXPECT_TRUE(arbiter.gated().empty());
+}
+
+TEST(ClosureArbiter, InconsistentGatedClosuresStayQueued) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  // Each wrong in its own way: the loops they form with the graph do not close.
+  Match a = line.Closure(2, 30);
+  Match b = line.Closure(5, 31);
+  Match c = line.Closure(8, 32);
+  b.T_i_k = b.T_i_k * Pose2(0.0, 2.0, 0.0);
+  c.T_i_k = c.T_i_k * Pose2(0.0, -3.0, 0.0);
+  EXPECT_EQ(arbiter.OfferPrior(a, 2.0, false, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(b, 2.0, false, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(c, 2.0, false, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.gated().size(), 3U);
+}
+
+TEST(ClosureArbiter, GatedClosuresOutsideTheWindowDoNotSupport) {
+  const Line line(80, 20, Pose2(0.0, 1.0, 0.0));
+  LoopClosureOptions options;
+  options.gated_window = 5;
+  ClosureArbiter arbiter(options);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(2, 30), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(5, 40), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(8, 50), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+}
+
+/// Two robots in one component: robot 1's estimate is `offset` away from the truth.
+struct TwoRobots {
+  FakeGraph graph;
+  std::vector<Pose2> truth;
+  explicit TwoRobots(const Pose2& offset, bool one_component) {
+    for (int r = 0; r < 2; ++r) {
+      for (int v = 0; v < 30; ++v) {
+        truth.emplace_back(v * 1.0, r * 0.5, 0.0);
+        graph.Add(r, r == 1 ? offset * truth.back() : truth.back(), v * 1.0, one_component ? 0 : r);
+      }
+    }
+  }
+  [[nodiscard]] Match Closure(int i, int k) const {
+    return Measure(i, k, truth[static_cast<std::size_t>(i)], truth[static_cast<std::size_t>(k)]);
+  }
+};
+
+TEST(ClosureArbiter, WithinMapRejectsAMatchThatWouldMoveTheMapTooFar) {
+  const TwoRobots robots(Pose2(20.0, 0.0, 0.0), true);
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(3, 33), 10.0, robots.graph).verdict,
+            Verdict::kReject);
+  EXPECT_TRUE(arbiter.within_map().empty());
+}
+
+TEST(ClosureArbiter, WithinMapAcceptsIndependentConsistentMatchesTogether) {
+  const TwoRobots robots(Pose2(2.0, 0.0, 0.0), true);
+  LoopClosureOptions options;
+  ClosureArbiter arbiter(options);
+  const int needed = std::max(options.min_join_matches + 1, options.min_consistent_gated);
+  ASSERT_EQ(needed, 3);
+  // Key maps 10 m apart on both robots: independent evidence.
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(0, 30), 1.0, robots.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(10, 40), 1.0, robots.graph).verdict,
+            Verdict::kWait);
+  const Decision d = arbiter.OfferWithinMap(robots.Closure(20, 50), 1.0, robots.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  EXPECT_EQ(d.accepted.size(), 3U);
+  EXPECT_TRUE(arbiter.within_map().empty());
+}
+
+TEST(ClosureArbiter, NeighbouringMatchesAreNotIndependentEvidence) {
+  const TwoRobots robots(Pose2(2.0, 0.0, 0.0), true);
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(0, 30), 1.0, robots.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(1, 31), 1.0, robots.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferWithinMap(robots.Closure(2, 32), 1.0, robots.graph).verdict,
+            Verdict::kWait);
+}
+
+TEST(ClosureArbiter, JoinNeedsIndependentConsistentMatchesBetweenComponents) {
+  // Each robot in its own frame: robot 1's estimate is its truth seen from far away.
+  TwoRobots robots(Pose2(100.0, -40.0, 2.0), false);
+  LoopClosureOptions options;
+  ClosureArbiter arbiter(options);
+  ASSERT_EQ(options.min_join_matches, 2);
+  EXPECT_EQ(arbiter.OfferJoin(robots.Closure(0, 30), robots.graph).verdict, Verdict::kWait);
+  // A match found from the other side counts reversed.
+  const Decision d = arbiter.OfferJoin(robots.Closure(40, 10), robots.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  ASSERT_EQ(d.accepted.size(), 2U);
+  EXPECT_EQ(d.accepted[1].i, 30);  // oriented from the new match's i side
+  EXPECT_EQ(arbiter.joinable().size(), 2U);
+  robots.graph.SetComponent(1, 0);
+  arbiter.ForgetWithinComponents(robots.graph);
+  EXPECT_TRUE(arbiter.joinable().empty());
+}
+
+TEST(ClosureArbiter, InconsistentMatchesDoNotJoin) {
+  TwoRobots robots(Pose2(100.0, -40.0, 2.0), false);
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  Match wrong = robots.Closure(10, 40);
+  wrong.T_i_k = wrong.T_i_k * Pose2(3.0, 0.0, 0.5);
+  EXPECT_EQ(arbiter.OfferJoin(robots.Closure(0, 30), robots.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferJoin(wrong, robots.graph).verdict, Verdict::kWait);
+}
+
+}  // namespace
+}  // namespace gridslam::loop_closure
