@@ -16,8 +16,7 @@
 //   corridors 72 x 72 m: a square ring of 2.4 m corridors with 60 m sides (like the ACES
 //             building) between outer and inner offices and a solid core; each side has doors
 //             along one 20 m stretch only, so 30-40 m of every side is blank wall. Its tour
-//             drives the ring anticlockwise, turns round and drives it clockwise, visiting four
-//             rooms.
+//             drives the ring twice anticlockwise, visiting four rooms.
 // Walls are 0.2 m thick; doors 1.2 m. Routes run along corridor centrelines and into rooms
 // through the doors, well clear of walls and furniture.
 #include <cmath>
@@ -466,19 +465,19 @@ World MakeCorridors(double resolution) {
   const auto visit = [](std::vector<V2>& route, const Visit& v) {
     AppendRoomVisit(route, v.corridor, v.in, v.lateral, 1.4, v.depth, 1.4);
   };
-  // The core between the inner rooms stays solid. The tour: one lap anticlockwise visiting an
-  // inner room on the south side and an outer room on the east side; at the start a U-turn and
-  // one lap clockwise visiting an inner room on the west side and an outer room on the north
-  // side, back to the start: 2 x 240 m of ring, four rooms.
+  // The core between the inner rooms stays solid. The tour: two laps anticlockwise (so the
+  // second lap revisits the first in the same direction, as relations need), the first visiting
+  // an inner room on the south side and an outer room on the east side, the second an outer
+  // room on the north side and an inner room on the west side: 2 x 240 m of ring, four rooms.
   std::vector<V2> route = {{9.0, 6.0}};
   visit(route, inner_visits[0].front());
   route.push_back({66.0, 6.0});
   visit(route, outer_visits[1].back());
-  route.insert(route.end(), {{66.0, 66.0}, {6.0, 66.0}, {6.0, 6.0}, {9.0, 6.0}, {6.0, 6.0}});
-  visit(route, inner_visits[3].front());
+  route.insert(route.end(), {{66.0, 66.0}, {6.0, 66.0}, {6.0, 6.0}, {66.0, 6.0}, {66.0, 66.0}});
+  visit(route, outer_visits[2].back());
   route.push_back({6.0, 66.0});
-  visit(route, outer_visits[2].front());
-  route.insert(route.end(), {{66.0, 66.0}, {66.0, 6.0}, {9.0, 6.0}});
+  visit(route, inner_visits[3].back());
+  route.insert(route.end(), {{6.0, 6.0}, {9.0, 6.0}});
   return b.Build("corridors", std::move(route));
 }
 
