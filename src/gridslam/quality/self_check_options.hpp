@@ -22,7 +22,7 @@ struct SelfCheckOptions {
   double distance_clamp = 1.0;
   /// The map is flagged suspect when the score (share of agreeing returns) is below this [-].
   /// docs/self_check.md gives the validation behind the default.
-  double suspect_below = 0.85;
+  double suspect_below = 0.8;
   /// Smoothing radius of the disagreement heat layer in map_quality.png [m].
   double heat_radius = 0.3;
 
