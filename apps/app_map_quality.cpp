@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -97,8 +98,8 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
                      {{"closures", residuals.closures},
                       {"median_translation_m", residuals.median_translation},
                       {"max_translation_m", residuals.max_translation},
-                      {"median_rotation_deg", residuals.median_rotation * 180.0 / M_PI},
-                      {"max_rotation_deg", residuals.max_rotation * 180.0 / M_PI}}}};
+                      {"median_rotation_deg", residuals.median_rotation * 180.0 / std::numbers::pi},
+                      {"max_rotation_deg", residuals.max_rotation * 180.0 / std::numbers::pi}}}};
   char line[256];
   std::snprintf(line, sizeof(line),
                 "self-check: score %.3f (%s; %.1f%% of returns contradict the map, mean distance "

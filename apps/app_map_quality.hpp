@@ -3,6 +3,7 @@
 // (map_quality_<c>.png for several map components) and returns report.json's "quality" block.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -175,7 +176,7 @@ TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
   const RayCaster caster(w);
   int hits = 0;
   for (int k = 0; k < 360; ++k) {
-    const double angle = (k + 0.5) * 2.0 * M_PI / 360.0;
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
     const RayHit hit = caster.Cast({48.0, 6.0}, angle, 10.0);
     if (hit.hit) {
       ++hits;
@@ -187,7 +188,7 @@ TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
   // ... while the door stretch has openings into rooms (some beams reach beyond the walls).
   int beyond = 0;
   for (int k = 0; k < 360; ++k) {
-    const double angle = (k + 0.5) * 2.0 * M_PI / 360.0;
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
     const RayHit hit = caster.Cast({22.0, 6.0}, angle, 10.0);
     beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
   }
