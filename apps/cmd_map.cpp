@@ -23,6 +23,7 @@
 
 #include "app_align_map.hpp"
 #include "app_map_output.hpp"
+#include "app_map_quality.hpp"
 #include "command.hpp"
 #include <time.h>
 #include <unistd.h>
@@ -206,6 +207,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
 
   pipeline::Mapper mapper(context.options.Mapper(), num_robots);
+  QualityScans quality_scans(context.options.quality, num_robots);
   std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
   std::vector<std::optional<Time>> first_time(static_cast<std::size_t>(num_robots));
   std::vector<pipeline::FrameSource> sources;
@@ -243,6 +245,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
         }
         robots[r].duration = ToSeconds(frame.time - *first_time[r]);
         robots[r].T_base_laser.push_back(frame.T_base_laser);
+        quality_scans.Add(robot, robots[r].scans, frame);
         ++robots[r].scans;
         mapper.AddFrame(robot, frame);
         if (!snapshot_error) {
@@ -322,6 +325,12 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
+  auto quality = RunSelfCheck(args.output, result, quality_scans, context.options.quality,
+                              context.options.fusion);
+  if (!quality.ok()) {
+    return ReportError(quality.error());
+  }
+  report["quality"] = quality.value().report;
   const std::string config =
       "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
   if (const Status s = WriteMapOutputs(args.output, result, robots,
@@ -340,6 +349,9 @@ int RunMap(const MapArgs& args, AppContext& context) {
                "%ld gated, %ld pruned), %ld joins; %.2f s, %.0fx real time; outputs in %s\n",
                s.frames, s.key_maps, s.accepted, s.verified, s.rejected_gate, s.pruned, s.joins,
                seconds, seconds > 0.0 ? duration / seconds : 0.0, args.output.c_str());
+  if (!quality.value().summary.empty()) {
+    std::fprintf(stderr, "gridslam map: %s\n", quality.value().summary.c_str());
+  }
   return kExitOk;
 }
 

@@ -58,8 +58,9 @@ Result<simulation::World> LoadWorld(const simulation::SimulationOptions& options
     return simulation::WorldFromOccupancy(name, map.value());
   }
   if (!fs::exists(world)) {
-    return InvalidInput("--world: '" + world +
-                        "' is neither a built-in world (office, ambiguous) nor a file");
+    return InvalidInput(
+        "--world: '" + world +
+        "' is neither a built-in world (office, ambiguous, campus, corridors) nor a file");
   }
   auto image = io::ReadGrayImage(world, options.resolution);
   if (!image.ok()) {
@@ -199,9 +200,10 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
 
 RunFunction SetupSimulate(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<SimulateArgs>();
-  sub.add_option("--world", args->world,
-                 "Built-in world (office, ambiguous), a PNG floor plan (dark = wall) or a "
-                 "map_server YAML (default: simulation.world)");
+  sub.add_option(
+      "--world", args->world,
+      "Built-in world (office, ambiguous, campus, corridors), a PNG floor plan (dark = wall) or a "
+      "map_server YAML (default: simulation.world)");
   sub.add_option("--resolution", args->resolution,
                  "World cell size / PNG pixel size [m] (default: simulation.resolution)");
   sub.add_option("--robots", args->robots, "Number of robots, 1 to 4 (default 1)");

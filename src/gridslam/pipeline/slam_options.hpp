@@ -15,6 +15,7 @@
 #include "gridslam/multi_robot/log_split.hpp"
 #include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
+#include "gridslam/quality/self_check_options.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/simulation/simulation_options.hpp"
 
@@ -30,6 +31,7 @@ struct SlamOptions {
   loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
   pipeline::GraphOptions graph;                   ///< Building and optimizing the key-map graph.
   fusion::FusionOptions fusion;                   ///< Global map fusion.
+  quality::SelfCheckOptions quality;              ///< Map self-check (docs/self_check.md).
   simulation::SimulationOptions simulation;       ///< `gridslam simulate`.
   benchmark::AlignEvalOptions align_eval;         ///< `gridslam align-eval` (DESIGN.md 3.2).
   multi_robot::SplitOptions split;                ///< `gridslam split` (one log as several robots).
@@ -47,6 +49,7 @@ struct SlamOptions {
     v.Section("loop_closure", loop_closure, "Loop-closure search and gates (DESIGN.md 1.6)");
     v.Section("graph", graph, "Key-map graph: edges, online and final optimization");
     v.Section("fusion", fusion, "Global map fusion (DESIGN.md 1.8)");
+    v.Section("quality", quality, "Map self-check without ground truth (docs/self_check.md)");
     v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
     v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");
     v.Section("split", split, "Cutting one log into several robots (gridslam split)");
@@ -65,6 +68,7 @@ struct SlamOptions {
     GRIDSLAM_RETURN_IF_ERROR(loop_closure.Validate());
     GRIDSLAM_RETURN_IF_ERROR(graph.Validate());
     GRIDSLAM_RETURN_IF_ERROR(fusion.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(quality.Validate());
     GRIDSLAM_RETURN_IF_ERROR(simulation.Validate());
     GRIDSLAM_RETURN_IF_ERROR(align_eval.Validate());
     GRIDSLAM_RETURN_IF_ERROR(split.Validate());

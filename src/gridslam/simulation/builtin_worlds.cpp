@@ -9,8 +9,19 @@
 //             aliasing everywhere, and the featureless corridor is longer than the laser range.
 //             Its tour drives the featureless corridor, visits four of the identical rooms and
 //             drives the middle corridor twice in the same direction.
+//   campus    250 x 170 m: open ground with six blocks of buildings between 10 m roads, trees
+//             and posts along the roads, niches in the fence. Its 1.72 km tour drives the whole
+//             ring (784 m) before closing it, then two loops of 310 m and 466 m through the middle;
+//             every revisit comes after at least 300 m of travel.
+//   corridors 72 x 72 m: a square ring of 2.4 m corridors with 60 m sides (like the ACES
+//             building) between outer and inner offices and a solid core; each side has doors
+//             along one 20 m stretch only, so 30-40 m of every side is blank wall. Its tour
+//             drives the ring twice anticlockwise, visiting four rooms.
 // Walls are 0.2 m thick; doors 1.2 m. Routes run along corridor centrelines and into rooms
 // through the doors, well clear of walls and furniture.
+#include <cmath>
+#include <cstdint>
+#include <optional>
 #include <utility>
 
 #include "gridslam/simulation/world.hpp"
@@ -251,9 +262,230 @@ World MakeAmbiguous(double resolution) {
   return b.Build("ambiguous", std::move(route));
 }
 
+/// A small deterministic generator for the layout of the large worlds (independent of the
+/// simulation seed: a world is the same for every run).
+class Layout {
+ public:
+  explicit Layout(std::uint32_t state) : state_(state) {}
+  /// Uniform in [lo, hi).
+  double Uniform(double lo, double hi) {
+    state_ = state_ * 1664525U + 1013904223U;  // Numerical Recipes LCG
+    return lo + (hi - lo) * static_cast<double>(state_ >> 8) / static_cast<double>(1U << 24);
+  }
+
+ private:
+  std::uint32_t state_;
+};
+
+World MakeCampus(double resolution) {
+  // 250 x 170 m inside a 1 m fence. Roads 10 m wide: a ring (centrelines y = 7, 163; x = 7,
+  // 243), a middle road (y = 85) and two cross roads (x = 88, 166) between six blocks of
+  // buildings. Everything but the buildings, trees and the fence is open ground.
+  constexpr double kW = 250.0;
+  constexpr double kH = 170.0;
+  WorldBuilder b(kW, kH, resolution);
+  b.Carve(1.0, 1.0, kW - 1.0, kH - 1.0);
+  Layout layout(2026U);
+  // Niches and buttresses along the fence, irregularly spaced, so the ring road's outer side is
+  // not one featureless wall.
+  for (double u = 4.0; u < kW - 6.0; u += layout.Uniform(8.0, 22.0)) {
+    const double w = layout.Uniform(0.6, 2.0);
+    b.Carve(u, 0.4, u + w, 1.0);
+    b.Fill(u + layout.Uniform(4.0, 7.0), 1.0, u + layout.Uniform(7.5, 8.5), 1.5);
+  }
+  for (double u = 4.0; u < kW - 6.0; u += layout.Uniform(8.0, 22.0)) {
+    b.Carve(u, kH - 1.0, u + layout.Uniform(0.6, 2.0), kH - 0.4);
+  }
+  for (double u = 4.0; u < kH - 6.0; u += layout.Uniform(8.0, 22.0)) {
+    b.Carve(0.4, u, 1.0, u + layout.Uniform(0.6, 2.0));
+    b.Carve(kW - 1.0, u, kW - 0.4, u + layout.Uniform(0.6, 2.0));
+  }
+  // Six blocks between the roads; each holds two to four buildings with irregular setbacks,
+  // some L-shaped, with open lawns between them.
+  const double xs[][2] = {{12.0, 83.0}, {93.0, 161.0}, {171.0, 238.0}};
+  const double ys[][2] = {{12.0, 80.0}, {90.0, 158.0}};
+  for (const auto& bx : xs) {
+    for (const auto& by : ys) {
+      const double mx = layout.Uniform(0.35, 0.65) * (bx[1] - bx[0]) + bx[0];
+      const double my = layout.Uniform(0.35, 0.65) * (by[1] - by[0]) + by[0];
+      const double lots[][4] = {{bx[0], by[0], mx, my},
+                                {mx, by[0], bx[1], my},
+                                {bx[0], my, mx, by[1]},
+                                {mx, my, bx[1], by[1]}};
+      for (const auto& lot : lots) {
+        if (layout.Uniform(0.0, 1.0) < 0.2) {
+          continue;  // a lawn
+        }
+        const double x0 = lot[0] + layout.Uniform(1.0, 6.0);
+        const double y0 = lot[1] + layout.Uniform(1.0, 6.0);
+        const double x1 = lot[2] - layout.Uniform(1.0, 6.0);
+        const double y1 = lot[3] - layout.Uniform(1.0, 6.0);
+        if (x1 - x0 < 6.0 || y1 - y0 < 6.0) {
+          continue;
+        }
+        if (layout.Uniform(0.0, 1.0) < 0.5) {
+          // L-shape: two wings.
+          const double cx = x0 + layout.Uniform(0.3, 0.5) * (x1 - x0);
+          const double cy = y0 + layout.Uniform(0.3, 0.5) * (y1 - y0);
+          b.Fill(x0, y0, cx, y1).Fill(x0, y0, x1, cy);
+        } else {
+          b.Fill(x0, y0, x1, y1);
+          // A recessed entrance.
+          const double e = x0 + layout.Uniform(0.2, 0.7) * (x1 - x0);
+          b.Carve(e, y0, e + 2.0, y0 + 1.0);
+        }
+      }
+    }
+  }
+  // Trees (0.6 m) and posts (0.2 m) along both sides of every road, 3.8 m off its centreline,
+  // none within 9 m of a crossing.
+  const double road_y[] = {7.0, 85.0, 163.0};
+  const double road_x[] = {7.0, 88.0, 166.0, 243.0};
+  const auto near_crossing = [](double u, const double* centres, int n) {
+    for (int k = 0; k < n; ++k) {
+      if (std::abs(u - centres[k]) < 9.0) {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (const double y : road_y) {
+    for (const double side : {-3.8, 3.8}) {
+      for (double x = 3.0; x < kW - 3.0; x += layout.Uniform(6.0, 16.0)) {
+        if (near_crossing(x, road_x, 4)) {
+          continue;
+        }
+        const double r = layout.Uniform(0.0, 1.0) < 0.7 ? 0.3 : 0.1;
+        b.Fill(x - r, y + side - r, x + r, y + side + r);
+      }
+    }
+  }
+  for (const double x : road_x) {
+    for (const double side : {-3.8, 3.8}) {
+      for (double y = 3.0; y < kH - 3.0; y += layout.Uniform(6.0, 16.0)) {
+        if (near_crossing(y, road_y, 3)) {
+          continue;
+        }
+        const double r = layout.Uniform(0.0, 1.0) < 0.7 ? 0.3 : 0.1;
+        b.Fill(x + side - r, y - r, x + side + r, y + r);
+      }
+    }
+  }
+  // The tour (1.72 km): loop A, the whole ring (784 m), closed only where it began; then up the
+  // west cross road, east along the middle road, round the north-east block (a 310 m loop) and
+  // the middle block (466 m) back to the west cross road, north to the ring and round the west
+  // side to the start. Every revisit comes after at least 300 m of travel.
+  std::vector<V2> route = {
+      {20.0, 7.0},  {243.0, 7.0},  {243.0, 163.0}, {7.0, 163.0},   {7.0, 7.0},     {20.0, 7.0},
+      {88.0, 7.0},  {88.0, 85.0},  {166.0, 85.0},  {166.0, 163.0}, {243.0, 163.0}, {243.0, 85.0},
+      {88.0, 85.0}, {88.0, 163.0}, {7.0, 163.0},   {7.0, 7.0},     {20.0, 7.0}};
+  return b.Build("campus", std::move(route));
+}
+
+World MakeCorridors(double resolution) {
+  // 72 x 72 m: a square ring corridor 2.4 m wide (centrelines x, y = 6 and 66; 60 m sides) like
+  // the ACES building, offices on both sides of it and a solid core. On each side only one
+  // stretch of about 20 m has doors; the rest of the side is blank wall, so for 30-40 m the
+  // corridor is featureless (a 10 m lidar sees two parallel walls and nothing else there).
+  constexpr double kS = 72.0;
+  WorldBuilder b(kS, kS, resolution);
+  b.Carve(4.8, 4.8, 67.2, 7.2).Carve(4.8, 64.8, 67.2, 67.2);
+  b.Carve(4.8, 4.8, 7.2, 67.2).Carve(64.8, 4.8, 67.2, 67.2);
+  const double widths[] = {4.0, 3.2, 5.6, 4.0, 6.4, 3.2, 4.8};
+  // Door zones along each side, in the side's own coordinate u in [7.4, 64.6].
+  const double zone[][2] = {{12.0, 32.0}, {40.0, 60.0}, {20.0, 40.0}, {34.0, 54.0}};
+  // Per side (south, east, north, west), the room visits the tour can make: inner and outer
+  // rooms with a door, at least 4 m wide.
+  struct Visit {
+    V2 corridor;  // on the corridor centreline, on the door's axis
+    V2 in;
+    V2 lateral;
+    double depth = 0.0;
+  };
+  std::vector<Visit> inner_visits[4];
+  std::vector<Visit> outer_visits[4];
+  int variant = 0;
+  for (int sidx = 0; sidx < 4; ++sidx) {
+    const auto s = static_cast<std::size_t>(sidx);
+    double u = 7.4;
+    for (int k = 0; u < 64.0; ++k) {
+      const double w = std::min(widths[static_cast<std::size_t>((k + sidx) % 7)], 64.6 - u);
+      if (w < 2.5) {
+        break;
+      }
+      const bool door = u + 0.5 * w > zone[s][0] && u + 0.5 * w < zone[s][1];
+      const double du = 1.0 + 0.2 * ((k + sidx) % 3);
+      const double outer_door = u + du;  // along the side's axis
+      const double inner_door = u + w - du;
+      // Outer room (3.6 m deep) and inner room (6 m deep) on either side of the corridor; the
+      // outer room's door lies near its low-u end, the inner room's near its high-u end.
+      std::optional<Room> outer;
+      std::optional<Room> inner;
+      Visit o;
+      Visit i;
+      o.depth = 2.2;
+      i.depth = 3.6;
+      switch (sidx) {
+        case 0:  // south: u along +x, centreline y = 6
+          outer.emplace(b, u, 1.0, u + w, 4.6, Side::kNorth);
+          inner.emplace(b, u, 7.4, u + w, 13.4, Side::kSouth);
+          o = {{outer_door, 6.0}, {0, -1}, {1, 0}, o.depth};
+          i = {{inner_door, 6.0}, {0, 1}, {-1, 0}, i.depth};
+          break;
+        case 1:  // east: u along +y, centreline x = 66
+          outer.emplace(b, 67.4, u, 71.0, u + w, Side::kWest);
+          inner.emplace(b, 58.6, u, 64.6, u + w, Side::kEast);
+          o = {{66.0, outer_door}, {1, 0}, {0, 1}, o.depth};
+          i = {{66.0, inner_door}, {-1, 0}, {0, -1}, i.depth};
+          break;
+        case 2:  // north: u along +x, centreline y = 66
+          outer.emplace(b, u, 67.4, u + w, 71.0, Side::kSouth);
+          inner.emplace(b, u, 58.6, u + w, 64.6, Side::kNorth);
+          o = {{outer_door, 66.0}, {0, 1}, {1, 0}, o.depth};
+          i = {{inner_door, 66.0}, {0, -1}, {-1, 0}, i.depth};
+          break;
+        default:  // west: u along +y, centreline x = 6
+          outer.emplace(b, 1.0, u, 4.6, u + w, Side::kEast);
+          inner.emplace(b, 7.4, u, 13.4, u + w, Side::kWest);
+          o = {{6.0, outer_door}, {-1, 0}, {0, 1}, o.depth};
+          i = {{6.0, inner_door}, {1, 0}, {0, -1}, i.depth};
+          break;
+      }
+      if (door) {
+        outer->Door(du).Furnish(du, variant++);
+        inner->Door(w - du).Furnish(w - du, variant++);
+        if (w >= 4.0) {
+          outer_visits[s].push_back(o);
+          inner_visits[s].push_back(i);
+        }
+      }
+      u += w + kWall;
+    }
+  }
+  const auto visit = [](std::vector<V2>& route, const Visit& v) {
+    AppendRoomVisit(route, v.corridor, v.in, v.lateral, 1.4, v.depth, 1.4);
+  };
+  // The core between the inner rooms stays solid. The tour: two laps anticlockwise (so the
+  // second lap revisits the first in the same direction, as relations need), the first visiting
+  // an inner room on the south side and an outer room on the east side, the second an outer
+  // room on the north side and an inner room on the west side: 2 x 240 m of ring, four rooms.
+  std::vector<V2> route = {{9.0, 6.0}};
+  visit(route, inner_visits[0].front());
+  route.push_back({66.0, 6.0});
+  visit(route, outer_visits[1].back());
+  route.insert(route.end(), {{66.0, 66.0}, {6.0, 66.0}, {6.0, 6.0}, {66.0, 6.0}, {66.0, 66.0}});
+  visit(route, outer_visits[2].back());
+  route.push_back({6.0, 66.0});
+  visit(route, inner_visits[3].back());
+  route.insert(route.end(), {{6.0, 6.0}, {9.0, 6.0}});
+  return b.Build("corridors", std::move(route));
+}
+
 }  // namespace
 
-std::vector<std::string> BuiltinWorldNames() { return {"office", "ambiguous"}; }
+std::vector<std::string> BuiltinWorldNames() {
+  return {"office", "ambiguous", "campus", "corridors"};
+}
 
 Result<World> MakeBuiltinWorld(const std::string& name, double resolution) {
   if (!(resolution > 0.0 && resolution <= 0.5)) {
@@ -265,7 +497,14 @@ Result<World> MakeBuiltinWorld(const std::string& name, double resolution) {
   if (name == "ambiguous") {
     return MakeAmbiguous(resolution);
   }
-  return InvalidInput("unknown built-in world '" + name + "' (office, ambiguous)");
+  if (name == "campus") {
+    return MakeCampus(resolution);
+  }
+  if (name == "corridors") {
+    return MakeCorridors(resolution);
+  }
+  return InvalidInput("unknown built-in world '" + name +
+                      "' (office, ambiguous, campus, corridors)");
 }
 
 }  // namespace gridslam::simulation

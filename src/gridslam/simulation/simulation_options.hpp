@@ -145,7 +145,8 @@ struct SimulationOptions {
 
   template <class V>
   void Visit(V& v) {
-    v("world", world, "Built-in world (office, ambiguous) or a PNG floor plan / map YAML file");
+    v("world", world,
+      "Built-in world (office, ambiguous, campus, corridors) or a PNG floor plan / map YAML file");
     v("route", route, "Waypoints file (x y per line, world frame); empty = built-in tour");
     v("resolution", resolution, "World grid cell size; pixel size of a PNG floor plan [m]");
     v("robots", robots, "Number of robots, 1 to 4");

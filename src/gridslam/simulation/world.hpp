@@ -1,8 +1,9 @@
 // The simulated world: a 2D grid of wall and free cells (Grid2D, origin at the lower-left
 // corner as map_server's), its clearance field (distance to the nearest wall, from an exact
 // Euclidean distance transform) and optionally a built-in route. Worlds come from the built-in
-// generators (`office`, `ambiguous`; builtin_worlds.cpp), from a floor-plan image (dark = wall)
-// or from an occupancy map; WorldBuilder draws new ones from free and solid rectangles.
+// generators (`office`, `ambiguous`, `campus`, `corridors`; builtin_worlds.cpp), from a floor-plan
+// image (dark = wall) or from an occupancy map; WorldBuilder draws new ones from free and solid
+// rectangles.
 #pragma once
 
 #include <cstdint>
@@ -62,7 +63,7 @@ class WorldBuilder {
   Grid2D<std::uint8_t> walls_;
 };
 
-/// Names of the built-in worlds ("office", "ambiguous").
+/// Names of the built-in worlds ("office", "ambiguous", "campus", "corridors").
 std::vector<std::string> BuiltinWorldNames();
 
 /// A built-in world at the given resolution [m], with its tour; InvalidInput for unknown names.

@@ -1,11 +1,14 @@
 #include "gridslam/simulation/world.hpp"
 
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
 #include "gridslam/simulation/internal/distance_field.hpp"
 #include "gridslam/simulation/random.hpp"
+#include "gridslam/simulation/ray_caster.hpp"
 #include "gridslam/simulation/simulator.hpp"
 
 namespace gridslam::simulation {
@@ -109,6 +112,101 @@ TEST(WorldTest, BuiltinWorldsHaveTheirSizeAndACollisionFreeTour) {
     EXPECT_GE(run.value().robots[0].min_clearance, options.motion.robot_radius) << name;
   }
   EXPECT_FALSE(MakeBuiltinWorld("nowhere", 0.05).ok());
+}
+
+// Smallest travel between two visits of the same place (within `radius`) among pairs of poses
+// more than `min_gap` apart along the path; +inf when the path never returns.
+double ShortestLoop(const RobotRun& run, double radius, double min_gap) {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> travel;
+  double s = 0.0;
+  for (const Frame& f : run.frames) {
+    const Eigen::Vector2d p = f.T_world_base_true->translation();
+    if (!points.empty()) {
+      s += (p - points.back()).norm();
+      if (s - travel.back() < 0.5) {
+        s -= (p - points.back()).norm();
+        continue;  // one pose per 0.5 m
+      }
+    }
+    points.push_back(p);
+    travel.push_back(s);
+  }
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    for (std::size_t j = 0; j < k; ++j) {
+      if (travel[k] - travel[j] > min_gap && (points[k] - points[j]).norm() < radius) {
+        shortest = std::min(shortest, travel[k] - travel[j]);
+      }
+    }
+  }
+  return shortest;
+}
+
+TEST(WorldTest, CampusTourIsLongAndClosesItsLoopsOnlyAfterLongExcursions) {
+  const auto world = MakeBuiltinWorld("campus", 0.05);
+  ASSERT_TRUE(world.ok());
+  EXPECT_GE(world.value().walls.Width() * 0.05, 249.9);
+  SimulationOptions options;
+  options.relations.revisit_stride = 1000;
+  const auto run = Simulate(world.value(), {}, options);
+  ASSERT_TRUE(run.ok()) << run.error().ToString();
+  const RobotRun& robot = run.value().robots[0];
+  EXPECT_GT(robot.distance, 1500.0);
+  // Places seen again (within 3 m) are seen again only after 300 m or more.
+  const double loop = ShortestLoop(robot, 3.0, 30.0);
+  EXPECT_GE(loop, 300.0);
+  EXPECT_LT(loop, 400.0);  // ... and the tour does close loops (the 310 m one).
+}
+
+TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
+  const auto world = MakeBuiltinWorld("corridors", 0.05);
+  ASSERT_TRUE(world.ok());
+  const World& w = world.value();
+  // The ring: free on the centrelines of all four 60 m sides, walls beside them.
+  for (const double u : {8.0, 20.0, 36.0, 50.0, 64.0}) {
+    EXPECT_FALSE(w.IsWall({u, 6.0}));
+    EXPECT_FALSE(w.IsWall({u, 66.0}));
+    EXPECT_FALSE(w.IsWall({6.0, u}));
+    EXPECT_FALSE(w.IsWall({66.0, u}));
+  }
+  EXPECT_TRUE(w.IsWall({36.0, 36.0}));  // the solid core
+  // In the middle of the south side's blank stretch a 10 m 360-degree lidar sees the two
+  // corridor walls and nothing else.
+  const RayCaster caster(w);
+  int hits = 0;
+  for (int k = 0; k < 360; ++k) {
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
+    const RayHit hit = caster.Cast({48.0, 6.0}, angle, 10.0);
+    if (hit.hit) {
+      ++hits;
+      const double y = 6.0 + hit.range * std::sin(angle);
+      EXPECT_NEAR(std::abs(y - 6.0), 1.2, 0.06) << "beam " << k;
+    }
+  }
+  EXPECT_GT(hits, 300);
+  // ... while the door stretch has openings into rooms (some beams reach beyond the walls).
+  int beyond = 0;
+  for (int k = 0; k < 360; ++k) {
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
+    const RayHit hit = caster.Cast({22.0, 6.0}, angle, 10.0);
+    beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
+  }
+  EXPECT_GT(beyond, 10);
+  // The tour: twice round the ring (about 480 m) and four room visits, collision-free.
+  SimulationOptions options;
+  options.relations.revisit_stride = 1000;
+  const auto run = Simulate(w, {}, options);
+  ASSERT_TRUE(run.ok()) << run.error().ToString();
+  EXPECT_GT(run.value().robots[0].distance, 480.0);
+  int in_rooms = 0;  // scans taken off the ring's centre lines, i.e. inside a room
+  for (const Frame& f : run.value().robots[0].frames) {
+    const Eigen::Vector2d p = f.T_world_base_true->translation();
+    const double off = std::min({std::abs(p.x() - 6.0), std::abs(p.x() - 66.0),
+                                 std::abs(p.y() - 6.0), std::abs(p.y() - 66.0)});
+    in_rooms += off > 2.0 ? 1 : 0;
+  }
+  EXPECT_GT(in_rooms, 4 * 10);
 }
 
 }  // namespace

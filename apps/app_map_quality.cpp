@@ -1,0 +1,113 @@
+#include "app_map_quality.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "gridslam/quality/loop_residuals.hpp"
+#include "gridslam/quality/map_self_check.hpp"
+#include "gridslam/quality/quality_image.hpp"
+
+namespace gridslam::app {
+
+QualityScans::QualityScans(const quality::SelfCheckOptions& options, int num_robots)
+    : options_(options),
+      kept_(static_cast<std::size_t>(num_robots)),
+      last_(static_cast<std::size_t>(num_robots)) {}
+
+void QualityScans::Add(int robot, long index, const Frame& frame) {
+  if (!options_.enabled) {
+    return;
+  }
+  auto& last = last_[static_cast<std::size_t>(robot)];
+  if (frame.has_odometry && last.has_value()) {
+    const Pose2 delta = last->Inverse() * frame.T_odom_base;
+    if (delta.translation().norm() < 0.5 * options_.min_motion &&
+        std::abs(NormalizeAngle(delta.theta())) < 0.5 * options_.min_rotation) {
+      return;
+    }
+  }
+  last = frame.T_odom_base;
+  kept_[static_cast<std::size_t>(robot)].push_back({index, frame.T_base_laser, frame.scan});
+}
+
+Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::MapperResult& result,
+                                    const QualityScans& scans,
+                                    const quality::SelfCheckOptions& options,
+                                    const fusion::FusionOptions& fusion) {
+  QualityOutcome outcome;
+  if (!options.enabled) {
+    outcome.report = {{"enabled", false}};
+    return outcome;
+  }
+  quality::SelfCheckStats total;
+  nlohmann::json per_map = nlohmann::json::array();
+  for (std::size_t c = 0; c < result.maps.size(); ++c) {
+    std::vector<fusion::PosedScan> posed;
+    for (std::size_t r = 0; r < result.trajectories.size(); ++r) {
+      if (result.component_of_robot[r] != static_cast<int>(c)) {
+        continue;
+      }
+      const auto& trajectory = result.trajectories[r];
+      for (const QualityScans::Kept& k : scans.Of(static_cast<int>(r))) {
+        if (k.index >= 0 && k.index < static_cast<long>(trajectory.size())) {
+          posed.push_back(
+              {trajectory[static_cast<std::size_t>(k.index)].T_map_base, k.T_base_laser, &k.scan});
+        }
+      }
+    }
+    const quality::SelfCheckResult check =
+        quality::CheckMap(result.maps[c], posed, fusion, options);
+    total.Merge(check.stats);
+    const std::string name =
+        result.maps.size() == 1 ? "map_quality.png" : "map_quality_" + std::to_string(c) + ".png";
+    const cv::Mat image = quality::RenderQualityImage(fusion::ToOccupancy(result.maps[c], fusion),
+                                                      quality::DisagreementShare(check, options));
+    const std::string path = (std::filesystem::path(dir) / name).string();
+    if (!cv::imwrite(path, image)) {
+      return RuntimeError("cannot write " + path);
+    }
+    per_map.push_back({{"image", name},
+                       {"score", check.stats.Score()},
+                       {"suspect", check.stats.Suspect(options)},
+                       {"scans", check.stats.scans},
+                       {"returns", check.stats.returns}});
+  }
+  std::vector<quality::LoopMeasurement> loops;
+  for (const pipeline::ClosureRecord& c : result.closures) {
+    if (c.outcome == "accepted" || c.outcome == "joined") {
+      loops.push_back({c.from, c.to, c.T_from_to});
+    }
+  }
+  const quality::LoopResidualStats residuals = quality::LoopResiduals(result.graph, loops);
+  const bool suspect = total.Suspect(options);
+  outcome.report = {{"score", total.Score()},
+                    {"suspect", suspect},
+                    {"suspect_below", options.suspect_below},
+                    {"agreement_distance_m", options.agreement_distance},
+                    {"contradicting_share", total.Contradiction()},
+                    {"mean_distance_m", total.MeanDistance()},
+                    {"scans", total.scans},
+                    {"returns", total.returns},
+                    {"returns_outside_map", total.outside},
+                    {"maps", per_map},
+                    {"loop_residuals",
+                     {{"closures", residuals.closures},
+                      {"median_translation_m", residuals.median_translation},
+                      {"max_translation_m", residuals.max_translation},
+                      {"median_rotation_deg", residuals.median_rotation * 180.0 / std::numbers::pi},
+                      {"max_rotation_deg", residuals.max_rotation * 180.0 / std::numbers::pi}}}};
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "self-check: score %.3f (%s; %.1f%% of returns contradict the map, mean distance "
+                "%.3f m); loop residuals median %.3f m, max %.3f m",
+                total.Score(), suspect ? "SUSPECT" : "consistent", 100.0 * total.Contradiction(),
+                total.MeanDistance(), residuals.median_translation, residuals.max_translation);
+  outcome.summary = line;
+  return outcome;
+}
+
+}  // namespace gridslam::app

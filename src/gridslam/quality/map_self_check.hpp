@@ -1,0 +1,53 @@
+// The map self-check (docs/self_check.md; issue 16 part 3): how consistent a finished map is with
+// the scans it was built from, without ground truth. A sample of the scans is replayed at their
+// final corrected poses against the final fused occupancy map: a return agrees when an occupied
+// cell lies within `agreement_distance` of it, and contradicts the map when the map holds free
+// space all around it. A misaligned trajectory draws the same wall twice; the later pass clears
+// the earlier copy (or both blur below the occupied threshold), so the earlier pass's returns
+// stop agreeing. The score is the share of agreeing returns (1 = every return lies on a wall of
+// the map). This is the grid form of the ray-consistency idea of Mazuran et al., "A Statistical
+// Measure for Map Consistency in SLAM", ICRA 2014.
+#pragma once
+
+#include <vector>
+
+#include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/grid/grid2d.hpp"
+#include "gridslam/quality/self_check_options.hpp"
+
+namespace gridslam::quality {
+
+/// Counts and shares of one map (or of several, merged).
+struct SelfCheckStats {
+  long scans = 0;             ///< Scans replayed.
+  long returns = 0;           ///< Their returns inside the map.
+  long agreeing = 0;          ///< Returns within agreement_distance of an occupied cell.
+  long contradicting = 0;     ///< Returns with only free cells within agreement_distance.
+  long outside = 0;           ///< Returns outside the map's limits (not counted in `returns`).
+  double distance_sum = 0.0;  ///< Sum of the clamped distances to the nearest occupied cell [m].
+
+  /// Share of agreeing returns, 1 when there is no return [-].
+  [[nodiscard]] double Score() const;
+  /// Share of contradicting returns [-].
+  [[nodiscard]] double Contradiction() const;
+  /// Mean clamped distance of a return to the nearest occupied cell [m].
+  [[nodiscard]] double MeanDistance() const;
+  /// Score() below options.suspect_below.
+  [[nodiscard]] bool Suspect(const SelfCheckOptions& options) const;
+  /// Adds another map's counts.
+  void Merge(const SelfCheckStats& other);
+};
+
+struct SelfCheckResult {
+  SelfCheckStats stats;
+  Grid2D<float> returns_per_cell;      ///< Replayed returns per cell of the map.
+  Grid2D<float> disagreeing_per_cell;  ///< Of which: not agreeing.
+};
+
+/// Replays `scans` (in trajectory order; borrowed) against the fused log-odds map `log_odds`,
+/// thresholded as `fusion` does for map.pgm. Scans closer than min_motion / min_rotation to the
+/// previous replayed scan are skipped.
+SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
+
+}  // namespace gridslam::quality

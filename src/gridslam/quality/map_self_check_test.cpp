@@ -1,0 +1,202 @@
+#include "gridslam/quality/map_self_check.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "gridslam/quality/quality_image.hpp"
+
+namespace gridslam::quality {
+namespace {
+
+// A closed rectangular room [-6, 6] x [-3, 3] with a 2 m pillar wall at x = 0, y in [1, 3].
+// Returns the range along the ray from `o` in direction `d` (unit) to the first wall.
+double RayRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d) {
+  double best = std::numeric_limits<double>::infinity();
+  const auto hit_x = [&](double x, double y_lo, double y_hi) {
+    if (std::abs(d.x()) < 1e-12) return;
+    const double t = (x - o.x()) / d.x();
+    const double y = o.y() + t * d.y();
+    if (t > 1e-9 && y >= y_lo && y <= y_hi) best = std::min(best, t);
+  };
+  const auto hit_y = [&](double y, double x_lo, double x_hi) {
+    if (std::abs(d.y()) < 1e-12) return;
+    const double t = (y - o.y()) / d.y();
+    const double x = o.x() + t * d.x();
+    if (t > 1e-9 && x >= x_lo && x <= x_hi) best = std::min(best, t);
+  };
+  hit_x(-6.0, -3.0, 3.0);
+  hit_x(6.0, -3.0, 3.0);
+  hit_y(-3.0, -6.0, 6.0);
+  hit_y(3.0, -6.0, 6.0);
+  hit_x(0.0, 1.0, 3.0);
+  return best;
+}
+
+// A 360-beam scan of the room from the true pose `T_world_laser`.
+LaserScan RoomScan(const Pose2& T_world_laser) {
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi;
+  scan.angle_increment = 2.0 * std::numbers::pi / 360.0;
+  scan.range_min = 0.05;
+  scan.range_max = 30.0;
+  for (int k = 0; k < 360; ++k) {
+    const double a = T_world_laser.theta() + scan.Angle(static_cast<std::size_t>(k));
+    scan.ranges.push_back(static_cast<float>(
+        RayRange(T_world_laser.translation(), Eigen::Vector2d(std::cos(a), std::sin(a)))));
+  }
+  return scan;
+}
+
+// The robot drives along y = -1.5 to the right, then back along y = -0.5 (true poses).
+std::vector<Pose2> TruePoses() {
+  std::vector<Pose2> poses;
+  for (double x = -5.0; x <= 5.0; x += 0.25) poses.emplace_back(x, -1.5, 0.0);
+  for (double x = 5.0; x >= -5.0; x -= 0.25) poses.emplace_back(x, -0.5, std::numbers::pi);
+  return poses;
+}
+
+struct SimRun {
+  std::vector<LaserScan> scans;
+  std::vector<fusion::PosedScan> posed;
+};
+
+// Scans from the true poses, placed at the estimated poses: the way back is estimated with a
+// yaw error `yaw` [rad] about the turning point and an offset `shift` [m] along y.
+SimRun MakeRun(double yaw, double shift) {
+  const std::vector<Pose2> truth = TruePoses();
+  SimRun run;
+  run.scans.reserve(truth.size());
+  for (const Pose2& p : truth) run.scans.push_back(RoomScan(p));
+  const std::size_t half = truth.size() / 2;
+  const Pose2 pivot(5.0, -1.0, 0.0);
+  const Pose2 error = pivot * Pose2(0.0, shift, yaw) * pivot.Inverse();
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    const Pose2 estimate = k < half ? truth[k] : error * truth[k];
+    run.posed.push_back({estimate, Pose2(), &run.scans[k]});
+  }
+  return run;
+}
+
+SelfCheckResult Check(const SimRun& run) {
+  const fusion::FusionOptions fusion;
+  const Grid2D<float> map = fusion::FuseScans(run.posed, fusion);
+  SelfCheckOptions options;
+  options.min_motion = 0.0;  // replay every scan
+  return CheckMap(map, run.posed, fusion, options);
+}
+
+TEST(MapSelfCheck, ConsistentMapScoresNearOne) {
+  const SelfCheckResult r = Check(MakeRun(0.0, 0.0));
+  EXPECT_EQ(r.stats.scans, static_cast<long>(TruePoses().size()));
+  EXPECT_GT(r.stats.returns, 20000);
+  EXPECT_EQ(r.stats.outside, 0);
+  EXPECT_GT(r.stats.Score(), 0.97);
+  EXPECT_LT(r.stats.Contradiction(), 0.01);
+  EXPECT_LT(r.stats.MeanDistance(), 0.03);
+  EXPECT_FALSE(r.stats.Suspect(SelfCheckOptions{}));
+}
+
+TEST(MapSelfCheck, DoubleWallsFromAYawErrorLowerTheScore) {
+  const double good = Check(MakeRun(0.0, 0.0)).stats.Score();
+  const SelfCheckResult bad = Check(MakeRun(5.0 * std::numbers::pi / 180.0, 0.0));
+  EXPECT_LT(bad.stats.Score(), good - 0.1);
+  EXPECT_GT(bad.stats.Contradiction(), 0.05);
+  EXPECT_GT(bad.stats.MeanDistance(), 0.05);
+  EXPECT_TRUE(bad.stats.Suspect(SelfCheckOptions{}));
+}
+
+TEST(MapSelfCheck, TheScoreFallsAsTheErrorGrows) {
+  double previous = 2.0;
+  for (const double shift : {0.0, 0.1, 0.3, 0.6}) {
+    const double score = Check(MakeRun(0.0, shift)).stats.Score();
+    EXPECT_LT(score, previous) << "shift " << shift;
+    previous = score;
+  }
+}
+
+TEST(MapSelfCheck, SpacingSkipsScansOnTheCorrectedTrajectory) {
+  const SimRun run = MakeRun(0.0, 0.0);
+  const fusion::FusionOptions fusion;
+  const Grid2D<float> map = fusion::FuseScans(run.posed, fusion);
+  SelfCheckOptions options;
+  options.min_motion = 0.5;     // every second pose (0.25 m apart)
+  options.min_rotation = 10.0;  // the U-turn alone does not count
+  const SelfCheckResult r = CheckMap(map, run.posed, fusion, options);
+  EXPECT_EQ(r.stats.scans, 42);  // 41 poses per leg, spacing 0.5 m: 21 + 21 (the turn moves 1 m)
+}
+
+TEST(MapSelfCheck, HeatLayerMarksTheDisagreeingArea) {
+  const SelfCheckResult bad = Check(MakeRun(0.0, 0.5));
+  const SelfCheckOptions options;
+  const Grid2D<float> share = DisagreementShare(bad, options);
+  // The far (left) wall is drawn twice 0.5 m apart after the shift; the right wall near the pivot
+  // less so. Compare the share near the left wall with the share near the bottom-right corner.
+  const MapLimits& l = share.Limits();
+  float left = 0.0F;
+  for (double y = -2.5; y <= 2.5; y += 0.05) {
+    for (double x = -6.2; x <= -5.3; x += 0.05) {
+      const Eigen::Array2i c = l.CellIndex({x, y});
+      if (l.Contains(c)) left = std::max(left, share.at(c));
+    }
+  }
+  EXPECT_GT(left, 0.4);
+  const SelfCheckResult good = Check(MakeRun(0.0, 0.0));
+  const Grid2D<float> good_share = DisagreementShare(good, options);
+  float good_max = 0.0F;
+  for (const float v : good_share.Cells()) good_max = std::max(good_max, v);
+  EXPECT_LT(good_max, left);
+  const SimRun run = MakeRun(0.0, 0.0);
+  const fusion::FusionOptions fusion;
+  const OccupancyImage map = fusion::ToOccupancy(fusion::FuseScans(run.posed, fusion), fusion);
+  const cv::Mat image = RenderQualityImage(map, good_share);
+  EXPECT_EQ(image.type(), CV_8UC3);
+  EXPECT_EQ(image.rows, map.Height());
+  EXPECT_EQ(image.cols, map.Width());
+}
+
+TEST(SelfCheckStats, SharesAndMerge) {
+  SelfCheckStats a;
+  EXPECT_DOUBLE_EQ(a.Score(), 1.0);
+  EXPECT_DOUBLE_EQ(a.Contradiction(), 0.0);
+  a.returns = 10;
+  a.agreeing = 9;
+  a.contradicting = 1;
+  a.distance_sum = 0.5;
+  SelfCheckStats b;
+  b.returns = 30;
+  b.agreeing = 15;
+  b.contradicting = 3;
+  b.distance_sum = 1.5;
+  a.Merge(b);
+  EXPECT_EQ(a.returns, 40);
+  EXPECT_DOUBLE_EQ(a.Score(), 24.0 / 40.0);
+  EXPECT_DOUBLE_EQ(a.Contradiction(), 4.0 / 40.0);
+  EXPECT_DOUBLE_EQ(a.MeanDistance(), 2.0 / 40.0);
+  SelfCheckOptions options;
+  options.suspect_below = 0.6;
+  EXPECT_FALSE(a.Suspect(options));
+  options.suspect_below = 0.61;
+  EXPECT_TRUE(a.Suspect(options));
+}
+
+TEST(SelfCheckOptions, ValidateRejectsBadValues) {
+  EXPECT_TRUE(SelfCheckOptions{}.Validate().ok());
+  SelfCheckOptions o;
+  o.agreement_distance = 0.0;
+  EXPECT_FALSE(o.Validate().ok());
+  o = SelfCheckOptions{};
+  o.distance_clamp = 0.05;
+  EXPECT_FALSE(o.Validate().ok());
+  o = SelfCheckOptions{};
+  o.suspect_below = 1.5;
+  EXPECT_FALSE(o.Validate().ok());
+  o = SelfCheckOptions{};
+  o.min_motion = -1.0;
+  EXPECT_FALSE(o.Validate().ok());
+}
+
+}  // namespace
+}  // namespace gridslam::quality

@@ -1,0 +1,22 @@
+// The self-check's heat layer (map_quality.png, docs/self_check.md): the map in grey with, in red,
+// the local share of replayed returns that do not agree with it, i.e. where the map disagrees
+// with itself (double walls, smeared or erased structure).
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+
+#include "gridslam/grid/grid2d.hpp"
+#include "gridslam/quality/map_self_check.hpp"
+
+namespace gridslam::quality {
+
+/// Local share of disagreeing returns, smoothed over options.heat_radius; -1 where fewer than
+/// `min_returns` (smoothed) returns per cell fell. Same limits as the map.
+Grid2D<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
+                                float min_returns = 0.02F);
+
+/// BGR image (row 0 at the top, as map.png): grey occupancy, red where the share is high
+/// (full red at a share of 0.5 or more).
+cv::Mat RenderQualityImage(const OccupancyImage& map, const Grid2D<float>& share);
+
+}  // namespace gridslam::quality
