@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -43,6 +44,10 @@ int Main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
   app.add_flag("--lenient", context.options.log.lenient,
                "Skip and count malformed log lines instead of failing");
+  std::optional<double> rate;
+  app.add_option("--rate", rate,
+                 "Scan rate [Hz] for logs without timestamps (times are synthesized from message "
+                 "order; log.timestamp_rate)");
 
   std::vector<std::pair<CLI::App*, RunFunction>> runners;
   for (auto& spec : Commands()) {
@@ -75,6 +80,9 @@ int Main(int argc, char** argv) {
     const bool lenient = context.options.log.lenient;
     context.options = from_file;
     context.options.log.lenient = context.options.log.lenient || lenient;
+  }
+  if (rate) {
+    context.options.log.timestamp_rate = *rate;
   }
   if (const Status s = context.options.Validate(); !s.ok()) {
     return ReportError(s.error());
