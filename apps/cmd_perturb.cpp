@@ -9,6 +9,7 @@
 // the laser lines always agree; with --no-odometry there are no ODOM lines and the scans are
 // pose-less RAWLASER1 lines, which the reader delivers with Frame::has_odometry = false. The
 // first lines are comments giving the source, every fault option and every injected glitch.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -60,10 +61,14 @@ std::string GlitchText(const perturb::GlitchEvent& e) {
 
 Status WritePerturbedLog(const std::string& path, const std::string& source,
                          const perturb::PerturbOptions& options, const perturb::PerturbedLog& log) {
+  // A log read without odometry stays without (rather than gaining constant odometry).
+  const bool no_odometry =
+      options.remove_odometry || std::none_of(log.frames.begin(), log.frames.end(),
+                                              [](const Frame& f) { return f.has_odometry; });
   io::CarmenWriterOptions writer_options;
   writer_options.hostname = "gridslam-perturb";
-  writer_options.laser_message = options.remove_odometry ? io::CarmenLaserMessage::kRawLaser1
-                                                         : io::CarmenLaserMessage::kRobotLaser1;
+  writer_options.laser_message =
+      no_odometry ? io::CarmenLaserMessage::kRawLaser1 : io::CarmenLaserMessage::kRobotLaser1;
   writer_options.write_truepos = true;
   const std::vector<Frame>& frames = log.frames;
   const Time start = frames.front().time;
@@ -86,12 +91,12 @@ Status WritePerturbedLog(const std::string& path, const std::string& source,
   for (const perturb::GlitchEvent& e : log.glitches) {
     writer.Comment(GlitchText(e));
   }
-  if (options.remove_odometry) {
+  if (no_odometry) {
     writer.Comment("odometry removed: no ODOM lines, pose-less RAWLASER1 (has_odometry = false)");
   }
   writer.LaserOffsetParams(frames.front().T_base_laser, start);
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    if (!options.remove_odometry) {
+    if (!no_odometry) {
       io::CarmenOdometry odometry{frames[k].time, frames[k].T_odom_base};
       if (k > 0) {
         const double dt = ToSeconds(frames[k].corrected_time - frames[k - 1].corrected_time);

@@ -13,11 +13,12 @@
 namespace gridslam::perturb {
 
 struct PerturbedLog {
-  std::vector<Frame> frames;
-  std::vector<GlitchEvent> glitches;  ///< Frame indices refer to `frames` only if kept;
-                                      ///< their times are always valid.
-  long cut = 0;                       ///< Scans outside [start, start + duration].
-  long decimated = 0;                 ///< Scans dropped by keep_every.
+  std::vector<Frame> frames;  ///< The perturbed scans, in file order.
+  /// The injected glitches; GlitchEvent::frame indexes the scans of the cut (before
+  /// keep_every), GlitchEvent::time is the scan's printed timestamp.
+  std::vector<GlitchEvent> glitches;
+  long cut = 0;        ///< Scans outside [start, start + duration].
+  long decimated = 0;  ///< Scans dropped by keep_every.
 };
 
 /// The frames (file order) under the faults of `options`. InvalidInput for invalid options or
