@@ -81,12 +81,22 @@ printf 'FLASER 3 1.0 2.0 3.0 0.5 0.0 0.1 0.5 0.0 0.1\nFLASER 3 1.0 2.0 3.0 0.6 0
 grep -q 'synthesized' "$tmp/untimed.err"
 [ "$(cut -d' ' -f1 "$tmp/untimed.txt" | tr '\n' ' ')" = "0.000000 0.200000 " ] || { cat "$tmp/untimed.txt"; exit 1; }
 
+# Fault options from YAML (the keys of the log's own comment block); flags override them.
+printf 'keep_every: 2\nmax_range: 6.0\n' > "$tmp/faults.yaml"
+"$bin" perturb "$log" -o "$tmp/y.clf" --faults "$tmp/faults.yaml" --max-range 4 > /dev/null
+grep -q '^# keep_every: 2$' "$tmp/y.clf"
+grep -q '^# max_range: 4.0$' "$tmp/y.clf"
+[ "$(grep -c '^ROBOTLASER1 ' "$tmp/y.clf")" = "$(( ($(wc -l < "$tmp/odom.txt") + 1) / 2 ))" ]
+
 # Bad input: exit 2, nothing written.
 set +e
 "$bin" perturb "$log" -o "$tmp/bad.clf" --keep-every 0 2> /dev/null; rc1=$?
 "$bin" perturb "$tmp/none.clf" -o "$tmp/bad.clf" 2> /dev/null; rc2=$?
 "$bin" perturb "$log" -o "$tmp/bad.clf" --start 100000 2> /dev/null; rc3=$?
+printf 'keep_evry: 2\n' > "$tmp/typo.yaml"
+"$bin" perturb "$log" -o "$tmp/bad.clf" --faults "$tmp/typo.yaml" 2> /dev/null; rc4=$?
 set -e
-[ "$rc1" = 2 ] && [ "$rc2" = 2 ] && [ "$rc3" = 2 ] || { echo "exit codes $rc1 $rc2 $rc3"; exit 1; }
+[ "$rc1" = 2 ] && [ "$rc2" = 2 ] && [ "$rc3" = 2 ] && [ "$rc4" = 2 ] ||
+  { echo "exit codes $rc1 $rc2 $rc3 $rc4"; exit 1; }
 [ ! -e "$tmp/bad.clf" ]
 echo "cli_perturb: ok"
