@@ -128,7 +128,7 @@ RunFunction SetupKeymaps(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<KeymapsArgs>();
   sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_option("--distance-clamp", args->distance_clamp,
                  "Distances at or beyond this are white in the distance images [m]");
   return [args](AppContext& ctx) { return RunKeymaps(*args, ctx); };
