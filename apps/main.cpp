@@ -83,7 +83,7 @@ std::size_t EditDistance(std::string_view a, std::string_view b) {
 std::string FirstWord(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg(argv[i]);
-    if (arg == "--config" || arg == "--set" || arg == "--log-level") {
+    if (arg == "--config" || arg == "--set" || arg == "--log-level" || arg == "--rate") {
       ++i;  // its value
     } else if (arg.empty() || arg[0] != '-') {
       return std::string(arg);
