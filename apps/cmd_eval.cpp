@@ -1,5 +1,7 @@
-// `gridslam eval RELATIONS TRAJECTORY [--json] [--min-dt S] [--max-dt S] [--tolerance S]`: the
-// SLAM benchmark's relation metric (DESIGN.md §2, §3.1) of a trajectory file (plain or TUM).
+// `gridslam eval RELATIONS TRAJECTORY [--json] [--min-dt S] [--max-dt S] [--tolerance S]
+// [--no-interpolate] [--max-interpolation-gap S]`: the SLAM benchmark's relation metric
+// (DESIGN.md §2, §3.1) of a trajectory file (plain or TUM). Relation timestamps between two
+// trajectory poses are interpolated (reported as `interpolated`), unless --no-interpolate.
 // Several robots (issue 8): `gridslam eval RELATIONS TRAJ_0 TRAJ_1 ... [--index index.txt]`
 // scores relations within and between robots of a merged map (trajectories in one common
 // frame): each timestamp is looked up in the trajectory of the robot index.txt gives it, or,
@@ -31,6 +33,8 @@ struct EvalArgs {
   std::optional<double> min_dt;
   std::optional<double> max_dt;
   std::optional<double> tolerance;
+  bool no_interpolate = false;
+  std::optional<double> max_interpolation_gap;
 };
 
 nlohmann::json ToJson(const eval::RelationMetrics& m, const eval::EvalOptions& o) {
@@ -44,11 +48,14 @@ nlohmann::json ToJson(const eval::RelationMetrics& m, const eval::EvalOptions& o
           {"rotation_sq_std_deg2", m.rotation_sq_deg2.std},
           {"relations", m.used},
           {"missing", m.missing},
+          {"interpolated", m.interpolated},
           {"filtered", m.filtered},
           {"total", m.total},
           {"tolerance", o.tolerance},
           {"min_dt", o.min_dt},
-          {"max_dt", o.max_dt}};
+          {"max_dt", o.max_dt},
+          {"interpolate", o.interpolate},
+          {"max_interpolation_gap", o.max_interpolation_gap}};
 }
 
 int RunEval(const EvalArgs& args, AppContext& context) {
@@ -56,6 +63,9 @@ int RunEval(const EvalArgs& args, AppContext& context) {
   options.min_dt = args.min_dt.value_or(options.min_dt);
   options.max_dt = args.max_dt.value_or(options.max_dt);
   options.tolerance = args.tolerance.value_or(options.tolerance);
+  options.interpolate = options.interpolate && !args.no_interpolate;
+  options.max_interpolation_gap =
+      args.max_interpolation_gap.value_or(options.max_interpolation_gap);
   if (const Status s = options.Validate(); !s.ok()) {
     return ReportError(s.error());
   }
@@ -95,6 +105,10 @@ int RunEval(const EvalArgs& args, AppContext& context) {
           ? std::move(trajectories.front())
           : multi_robot::CombineTrajectories(trajectories, index,
                                              SecondsToDuration(options.tolerance), &combined_stats);
+  if (trajectories.size() > 1 || !index.empty()) {
+    // The combined trajectory interleaves robots: a pose between two of them is no pose.
+    options.interpolate = false;
+  }
   const auto m = eval::EvaluateRelations(relations.value(), combined, options);
   if (args.json) {
     nlohmann::json json = ToJson(m, options);
@@ -111,15 +125,22 @@ int RunEval(const EvalArgs& args, AppContext& context) {
         m.translation.mean, m.translation.std, m.rotation_deg.mean, m.rotation_deg.std, m.used);
     std::printf(
         "translation_sq_mean=%.6g translation_sq_std=%.6g rotation_sq_mean_deg2=%.6g "
-        "rotation_sq_std_deg2=%.6g missing=%ld filtered=%ld total=%ld\n",
+        "rotation_sq_std_deg2=%.6g missing=%ld filtered=%ld total=%ld interpolated=%ld\n",
         m.translation_sq.mean, m.translation_sq.std, m.rotation_sq_deg2.mean,
-        m.rotation_sq_deg2.std, m.missing, m.filtered, m.total);
+        m.rotation_sq_deg2.std, m.missing, m.filtered, m.total, m.interpolated);
   }
   if (m.missing > 0) {
     std::fprintf(stderr,
                  "gridslam: warning: %ld of %ld relations not scored: the trajectory has no pose "
-                 "within %.6f s of one of their timestamps\n",
-                 m.missing, m.total - m.filtered, options.tolerance);
+                 "within %.6f s of one of their timestamps%s\n",
+                 m.missing, m.total - m.filtered, options.tolerance,
+                 options.interpolate ? " and none to interpolate between" : "");
+  }
+  if (m.interpolated > 0) {
+    std::fprintf(stderr,
+                 "gridslam: note: %ld of %ld scored relations use a pose interpolated between two "
+                 "trajectory poses (at most %.3f s apart; --no-interpolate to turn off)\n",
+                 m.interpolated, m.used, options.max_interpolation_gap);
   }
   if (combined_stats.shared_times > 0) {
     std::fprintf(stderr,
@@ -150,6 +171,10 @@ RunFunction SetupEval(CLI::App& sub, AppContext& /*context*/) {
                  "Score only relations with |t2 - t1| < S [s]; 0 = no limit");
   sub.add_option("--tolerance", args->tolerance,
                  "Largest relation/trajectory timestamp difference that matches [s]");
+  sub.add_flag("--no-interpolate", args->no_interpolate,
+               "Score only relations whose timestamps have trajectory poses (no interpolation)");
+  sub.add_option("--max-interpolation-gap", args->max_interpolation_gap,
+                 "Interpolate only between poses at most S seconds apart; 0 = any gap");
   return [args](AppContext& ctx) { return RunEval(*args, ctx); };
 }
 

@@ -40,6 +40,7 @@ namespace {
 /// Options every command accepts, before or after its name (so each command's --help shows them).
 struct CommonOptions {
   std::vector<std::string> set;  ///< --set KEY=VALUE, in order.
+  std::optional<double> rate;    ///< --rate HZ (log.timestamp_rate), after --config.
 };
 
 void AddCommonOptions(CLI::App& app, AppContext& context, std::string& log_level,
@@ -55,6 +56,9 @@ void AddCommonOptions(CLI::App& app, AppContext& context, std::string& log_level
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
   app.add_flag("--lenient", context.options.log.lenient,
                "Skip and count malformed log lines instead of failing");
+  app.add_option("--rate", common.rate,
+                 "Scan rate [Hz] for logs without timestamps (times are synthesized from message "
+                 "order; log.timestamp_rate)");
 }
 
 /// Levenshtein distance, for suggesting the command a typo meant.
@@ -79,7 +83,7 @@ std::size_t EditDistance(std::string_view a, std::string_view b) {
 std::string FirstWord(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg(argv[i]);
-    if (arg == "--config" || arg == "--set" || arg == "--log-level") {
+    if (arg == "--config" || arg == "--set" || arg == "--log-level" || arg == "--rate") {
       ++i;  // its value
     } else if (arg.empty() || arg[0] != '-') {
       return std::string(arg);
@@ -190,6 +194,12 @@ int Main(int argc, char** argv) {
     const bool lenient = context.options.log.lenient;
     context.options = from_file;
     context.options.log.lenient = context.options.log.lenient || lenient;
+  }
+  for (const CommonOptions& c : sub_common) {
+    common.rate = c.rate ? c.rate : common.rate;
+  }
+  if (common.rate) {
+    context.options.log.timestamp_rate = *common.rate;
   }
   // --set overrides, in order: the ones before the command name, then those after it.
   std::vector<std::string> sets = common.set;

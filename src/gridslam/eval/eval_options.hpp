@@ -19,6 +19,13 @@ struct EvalOptions {
   /// relations describe): "base" (robot centre, T_odom_base) or "laser" (T_odom_base *
   /// T_base_laser). docs/frames.md gives the evidence for the default.
   std::string trajectory_frame = "base";
+  /// A relation timestamp without a trajectory pose within `tolerance` gets the pose
+  /// interpolated between the trajectory poses just before and after it (linear in x, y,
+  /// shortest arc in theta, as Cartographer's relations tool), so decimated logs are scored on
+  /// every relation. False = such relations are missing.
+  bool interpolate = true;
+  /// Interpolate only between poses at most this far apart; 0 = any gap [s].
+  double max_interpolation_gap = 1.0;
 
   template <class V>
   void Visit(V& v) {
@@ -27,6 +34,10 @@ struct EvalOptions {
     v("max_dt", max_dt, "Score only relations with |t2 - t1| < max_dt; 0 = no limit [s]");
     v("trajectory_frame", trajectory_frame,
       "Frame of written trajectories and of the relations: base (robot centre) or laser");
+    v("interpolate", interpolate,
+      "Interpolate the trajectory at relation timestamps between two poses (else missing)");
+    v("max_interpolation_gap", max_interpolation_gap,
+      "Interpolate only between poses at most this far apart; 0 = any gap [s]");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(Require(tolerance >= 0.0, "eval.tolerance >= 0"));
@@ -34,6 +45,8 @@ struct EvalOptions {
     GRIDSLAM_RETURN_IF_ERROR(Require(max_dt >= 0.0, "eval.max_dt >= 0 (0 = no limit)"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(max_dt == 0.0 || max_dt > min_dt, "eval.max_dt > eval.min_dt (or 0)"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(max_interpolation_gap >= 0.0, "eval.max_interpolation_gap >= 0 (0 = any gap)"));
     GRIDSLAM_RETURN_IF_ERROR(Require(trajectory_frame == "base" || trajectory_frame == "laser",
                                      "eval.trajectory_frame is 'base' or 'laser'"));
     return Status::Ok();

@@ -41,6 +41,46 @@ std::optional<std::size_t> Lookup(const std::vector<StampedPose>& trajectory,
   return best;
 }
 
+/// The pose at `t` interpolated between the trajectory poses just before and just after it, if
+/// both exist and lie at most `max_gap` apart (0 = any gap).
+std::optional<Pose2> InterpolateAt(const std::vector<StampedPose>& trajectory,
+                                   const std::vector<std::size_t>& order, Time t, double max_gap) {
+  auto after = std::upper_bound(order.begin(), order.end(), t, [&](Time value, std::size_t i) {
+    return value < trajectory[i].time;
+  });
+  if (after == order.end() || after == order.begin()) {
+    return std::nullopt;
+  }
+  auto before = after - 1;
+  // The first of a run of equal times (duplicates use the first, as Lookup).
+  while (before != order.begin() && trajectory[*(before - 1)].time == trajectory[*before].time) {
+    --before;
+  }
+  const StampedPose& a = trajectory[*before];
+  const StampedPose& b = trajectory[*after];
+  const double gap = ToSeconds(b.time - a.time);
+  if (gap <= 0.0 || (max_gap > 0.0 && gap > max_gap)) {
+    return std::nullopt;
+  }
+  return Interpolate(a.pose, b.pose, ToSeconds(t - a.time) / gap);
+}
+
+/// The pose at `t`: exact (within the tolerance) or interpolated if allowed; `interpolated` is
+/// set when it was interpolated.
+std::optional<Pose2> PoseAt(const std::vector<StampedPose>& trajectory,
+                            const std::vector<std::size_t>& order, Time t, Duration tolerance,
+                            const EvalOptions& options, bool& interpolated) {
+  if (const auto i = Lookup(trajectory, order, t, tolerance)) {
+    return trajectory[*i].pose;
+  }
+  if (!options.interpolate) {
+    return std::nullopt;
+  }
+  auto pose = InterpolateAt(trajectory, order, t, options.max_interpolation_gap);
+  interpolated = interpolated || pose.has_value();
+  return pose;
+}
+
 }  // namespace
 
 MeanStd ComputeMeanStd(const std::vector<double>& values) {
@@ -89,13 +129,17 @@ RelationMetrics EvaluateRelations(const std::vector<Relation>& relations,
       ++m.filtered;
       continue;
     }
-    const auto i1 = Lookup(trajectory, order, r.t1, tolerance);
-    const auto i2 = Lookup(trajectory, order, r.t2, tolerance);
-    if (!i1 || !i2) {
+    bool interpolated = false;
+    const auto p1 = PoseAt(trajectory, order, r.t1, tolerance, options, interpolated);
+    const auto p2 = PoseAt(trajectory, order, r.t2, tolerance, options, interpolated);
+    if (!p1 || !p2) {
       ++m.missing;
       continue;
     }
-    const Pose2 estimate = Between(trajectory[*i1].pose, trajectory[*i2].pose);
+    if (interpolated) {
+      ++m.interpolated;
+    }
+    const Pose2 estimate = Between(*p1, *p2);
     const Pose2 error = RelationErrorPose(estimate, r.T_1_2);
     RelationError e{r, error.translation().norm(), std::abs(error.theta())};
     m.errors.push_back(e);

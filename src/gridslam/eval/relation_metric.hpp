@@ -1,6 +1,8 @@
 // The SLAM benchmark's relation metric (Kümmerle et al. 2009; DESIGN.md §3.1, FORMATS.md §4).
 // For each relation (t1, t2, δ*) the estimate's poses X_t1, X_t2 are the trajectory poses with
-// the nearest timestamps (within EvalOptions::tolerance), δ = X_t1⁻¹ X_t2, and the error is
+// the nearest timestamps (within EvalOptions::tolerance) or, failing that and if
+// EvalOptions::interpolate, interpolated between the poses before and after (at most
+// max_interpolation_gap apart; counted in `interpolated`), δ = X_t1⁻¹ X_t2, and the error is
 // ε = δ* ⊖ δ = δ⁻¹ δ*. Its translational part |t(ε)| = |t(δ*) - t(δ)| is the distance between
 // the true and estimated positions of the pose at t2, both expressed in the frame of the pose at
 // t1: unlike Cartographer's (δ δ*⁻¹), it does not depend on which of the two is called the
@@ -38,6 +40,7 @@ struct RelationMetrics {
   long total = 0;          ///< Relations given.
   long filtered = 0;       ///< Excluded by min_dt / max_dt.
   long missing = 0;        ///< Not scored: a timestamp has no trajectory pose within the tolerance.
+  long interpolated = 0;   ///< Scored with at least one interpolated pose (included in `used`).
   long used = 0;           ///< Scored (= errors.size()).
   MeanStd translation;     ///< [m]
   MeanStd translation_sq;  ///< [m²]

@@ -111,5 +111,62 @@ TEST(RelationMetric, FiltersByDuration) {
   EXPECT_FALSE(options.Validate().ok());
 }
 
+TEST(RelationMetric, InterpolatesBetweenTwoPoses) {
+  // The robot drives 1 m/s along x and turns 0.1 rad/s; poses only every second.
+  std::vector<StampedPose> traj;
+  for (int k = 0; k <= 10; ++k) {
+    traj.push_back({S(100.0 + k), Pose2(1.0 * k, 0.0, 0.1 * k)});
+  }
+  // Truth between t = 101.25 and 104.5 from the same motion model.
+  const Pose2 at1(1.25, 0.0, 0.125);
+  const Pose2 at2(4.5, 0.0, 0.45);
+  const Relation r{S(101.25), S(104.5), Between(at1, at2)};
+  const Relation exact{S(101.0), S(103.0), Between(traj[1].pose, traj[3].pose)};
+  auto m = EvaluateRelations({r, exact}, traj, {});
+  EXPECT_EQ(m.used, 2);
+  EXPECT_EQ(m.missing, 0);
+  EXPECT_EQ(m.interpolated, 1);
+  EXPECT_NEAR(m.errors[0].translation, 0.0, 1e-9);
+  EXPECT_NEAR(m.errors[0].rotation, 0.0, 1e-9);
+
+  EvalOptions no;
+  no.interpolate = false;
+  m = EvaluateRelations({r, exact}, traj, no);
+  EXPECT_EQ(m.used, 1);
+  EXPECT_EQ(m.missing, 1);
+  EXPECT_EQ(m.interpolated, 0);
+}
+
+TEST(RelationMetric, InterpolationTakesTheShortArcAndRespectsTheGap) {
+  const std::vector<StampedPose> traj = {
+      {S(1.0), Pose2(0, 0, 3.0)}, {S(2.0), Pose2(2, 0, -3.0)}, {S(10.0), Pose2(10, 0, -3.0)}};
+  // Half way across pi: theta = pi (not 0), x = 1.
+  const Relation r{S(1.0), S(1.5), Between(traj[0].pose, Pose2(1.0, 0.0, std::numbers::pi))};
+  auto m = EvaluateRelations({r}, traj, {});
+  ASSERT_EQ(m.used, 1);
+  EXPECT_NEAR(m.errors[0].translation, 0.0, 1e-9);
+  EXPECT_NEAR(m.errors[0].rotation, 0.0, 1e-9);
+  // Between 2 s and 10 s (8 s apart): beyond the default 1 s gap, so missing; 0 = any gap.
+  const Relation far{S(1.0), S(6.0), Pose2(6.0, 0.0, 0.0)};
+  m = EvaluateRelations({far}, traj, {});
+  EXPECT_EQ(m.missing, 1);
+  EvalOptions any;
+  any.max_interpolation_gap = 0.0;
+  m = EvaluateRelations({far}, traj, any);
+  EXPECT_EQ(m.used, 1);
+  EXPECT_EQ(m.interpolated, 1);
+  // Outside the trajectory's time span nothing is extrapolated.
+  m = EvaluateRelations({{S(0.5), S(1.0), Pose2()}, {S(2.0), S(11.0), Pose2()}}, traj, any);
+  EXPECT_EQ(m.missing, 2);
+}
+
+TEST(RelationMetric, ExactMatchWithinToleranceIsNotInterpolated) {
+  const std::vector<StampedPose> traj = {{S(1.0), Pose2(0, 0, 0)}, {S(2.0), Pose2(1, 0, 0)}};
+  const auto m = EvaluateRelations({{S(1.0004), S(1.9996), Pose2(1, 0, 0)}}, traj, {});
+  EXPECT_EQ(m.used, 1);
+  EXPECT_EQ(m.interpolated, 0);
+  EXPECT_NEAR(m.errors[0].translation, 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace gridslam::eval

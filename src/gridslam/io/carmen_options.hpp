@@ -27,6 +27,10 @@ struct CarmenOptions {
   /// A pose-less scan (RAWLASER*) waits at most this long in log time for an ODOM line at or
   /// after its timestamp before its odometry is clamped to the latest ODOM line [s].
   double max_lookahead = 10.0;
+  /// A log whose first laser line has no timestamp (0 or missing, as orebro and laserazos) gets
+  /// times synthesized from message order: laser line k at k / timestamp_rate seconds (ODOM and
+  /// TRUEPOS lines at the time of the next laser line) [Hz].
+  double timestamp_rate = 10.0;
 
   template <class V>
   void Visit(V& v) {
@@ -42,6 +46,8 @@ struct CarmenOptions {
       "Beam step of FLASER/RLASER lines [rad]; 0 = CARMEN's guess from the beam count");
     v("max_lookahead", max_lookahead,
       "Longest wait in log time for the ODOM line after a pose-less scan [s]");
+    v("timestamp_rate", timestamp_rate,
+      "Scan rate used to synthesize times when the log has none (0 or missing) [Hz]");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(Require(max_usable_range > 0.0, "log.max_usable_range > 0"));
@@ -50,6 +56,7 @@ struct CarmenOptions {
     GRIDSLAM_RETURN_IF_ERROR(
         Require(flaser_angle_increment >= 0.0, "log.flaser_angle_increment >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(max_lookahead > 0.0, "log.max_lookahead > 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(timestamp_rate > 0.0, "log.timestamp_rate > 0"));
     return Status::Ok();
   }
 };

@@ -62,12 +62,18 @@ struct CarmenState {
   std::deque<TimedPose> truepos;                                 // recent TRUEPOS lines
   std::optional<Time> newest_time;  // latest printed time read (look-ahead bound)
   std::optional<Time> last_emitted;
+  enum class TimeSource { kUndecided, kLog, kSynthetic };
+  TimeSource time_source = TimeSource::kUndecided;
+  long synthetic_lasers = 0;   // laser lines given a synthesized time so far
+  std::string synthetic_text;  // printed form of the latest synthesized time
+  bool warned_odometry_in_laser_pose = false;
 
   Result<std::optional<Frame>> Next();
   Status ReadOneLine();
   Status Handle(long line_number);
   Status Dispatch(long line_number);
   Status HandleParam(long line_number);
+  Status ResolveTime(long line_number);
   void Drain();
   std::optional<Frame> TryEmit();
   Pose2 Mounting(const CarmenMessage& m) const;
@@ -172,7 +178,42 @@ Status CarmenState::Handle(long line_number) {
   return Status::Ok();
 }
 
+Status CarmenState::ResolveTime(long line_number) {
+  const bool untimed = message.time_missing || message.time == Time();
+  if (time_source == TimeSource::kUndecided &&
+      (message.kind == CarmenKind::kLaser || message.time_missing)) {
+    time_source = untimed ? TimeSource::kSynthetic : TimeSource::kLog;
+    if (time_source == TimeSource::kSynthetic) {
+      GRIDSLAM_LOG_WARN(
+          "{}:{}: the log has no timestamps ({}): times are synthesized from message order, one "
+          "laser line every {} s (log.timestamp_rate = {} Hz; --rate sets it)",
+          path, line_number, message.time_missing ? "the field is missing" : "the field is 0",
+          1.0 / options.timestamp_rate, options.timestamp_rate);
+    }
+  }
+  if (time_source == TimeSource::kSynthetic) {
+    message.time =
+        Time(SecondsToDuration(static_cast<double>(synthetic_lasers) / options.timestamp_rate));
+    synthetic_text = FormatSeconds(message.time, 6);
+    message.time_text = synthetic_text;
+    message.time_missing = false;
+    ++stats.synthesized_timestamps;
+    if (message.kind == CarmenKind::kLaser) {
+      ++synthetic_lasers;
+    }
+  } else if (message.time_missing) {
+    return InvalidInput(std::string(message.tag) +
+                            ": field 'ipc_timestamp' missing (the log's first laser line has one)",
+                        path, line_number);
+  }
+  return Status::Ok();
+}
+
 Status CarmenState::Dispatch(long line_number) {
+  if (message.kind == CarmenKind::kLaser || message.kind == CarmenKind::kOdom ||
+      message.kind == CarmenKind::kTruePos) {
+    GRIDSLAM_RETURN_IF_ERROR(ResolveTime(line_number));
+  }
   switch (message.kind) {
     case CarmenKind::kComment:
       ++stats.comments;
@@ -212,6 +253,20 @@ Status CarmenState::Dispatch(long line_number) {
       return Status::Ok();
     }
     case CarmenKind::kLaser: {
+      if (time_source == TimeSource::kSynthetic && message.robot_pose && message.laser_pose &&
+          message.robot_pose->x() == 0.0 && message.robot_pose->y() == 0.0 &&
+          message.robot_pose->theta() == 0.0) {
+        // An old untimed FLASER whose odometry triple is all zero: the laser triple is the
+        // odometry (orebro), the laser at the robot centre.
+        if (!warned_odometry_in_laser_pose && !IsApprox(*message.laser_pose, Pose2())) {
+          warned_odometry_in_laser_pose = true;
+          GRIDSLAM_LOG_WARN(
+              "{}:{}: the laser line's odometry fields are 0: its laser pose is "
+              "read as the odometry",
+              path, line_number);
+        }
+        message.robot_pose = message.laser_pose;
+      }
       newest_time = newest_time ? std::max(*newest_time, message.time) : message.time;
       PendingScan scan;
       scan.seq = next_seq++;
@@ -269,6 +324,9 @@ std::optional<Frame> CarmenState::TryEmit() {
     if (!covered && !eof && !waited_enough && scans.size() < kMaxPendingScans) {
       return std::nullopt;
     }
+    // A log without any odometry (no ODOM line so far, pose-less laser lines): scan matching
+    // alone; the identity is a placeholder.
+    s.frame.has_odometry = stats.odometry > 0;
     s.frame.T_odom_base = OdometryAt(t);
   }
   if (!truepos.empty()) {

@@ -5,8 +5,12 @@
 // lines around them (linear in x, y, shortest arc in theta). Each line keeps its own beam
 // geometry (interleaved scanners), and no-return readings (sentinels, > max_usable_range, NaN,
 // <= 0) stay in `ranges` but fall outside (range_min, range_max) so LaserScan::IsHit() excludes
-// them. Timestamp quirks (§1.5) are repaired in Frame::corrected_time; Frame::time keeps the
-// printed value.
+// them. A log with pose-less laser lines and no ODOM line at all gives frames with
+// has_odometry = false (identity odometry placeholder). A log whose first laser line has no
+// timestamp (0, or the field missing) gets times synthesized from message order at
+// CarmenOptions::timestamp_rate, with a warning; in such a log, FLASER lines whose odometry
+// triple is all zero carry the odometry in their laser triple (orebro). Timestamp quirks (§1.5) are
+// repaired in Frame::corrected_time; Frame::time keeps the printed value.
 #pragma once
 
 #include <memory>
@@ -34,6 +38,7 @@ struct CarmenStats {
   long skipped_bad_odometry = 0;    ///< ODOM lines with timestamp <= 0.
   long scans_without_odometry = 0;  ///< Pose-less scans outside the ODOM time span (clamped).
   long repaired_timestamps = 0;     ///< Lines whose corrected_time differs from the printed one.
+  long synthesized_timestamps = 0;  ///< Lines whose time was synthesized (the log has none).
   std::set<std::string> unknown_types;  ///< Unknown message types seen.
 };
 

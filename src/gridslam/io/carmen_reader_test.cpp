@@ -304,6 +304,108 @@ TEST(CarmenReader, ScansBeyondTheOdometryWaitOnlyMaxLookahead) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CarmenReader, LogWithoutAnyOdometryMarksFramesWithoutOdometry) {
+  const auto dir = testing::MakeTempDir("carmen_no_odometry");
+  const std::string path = (dir / "no_odom.clf").string();
+  {
+    std::ofstream out(path);
+    out << std::fixed;
+    for (int k = 0; k < 5; ++k) {
+      out << "RAWLASER1 0 -1.570796 3.141593 0.785398 81.90 0.01 0 2 1.00 1.00 0 "
+          << 100.0 + 0.1 * k << " h 0\n";
+    }
+  }
+  const auto frames = ReadCarmenLog(path, {});
+  ASSERT_TRUE(frames.ok());
+  ASSERT_EQ(frames.value().size(), 5U);
+  for (const Frame& f : frames.value()) {
+    EXPECT_FALSE(f.has_odometry);
+    EXPECT_TRUE(IsApprox(f.T_odom_base, Pose2::Identity()));
+  }
+  // With ODOM lines (or laser lines carrying poses) the frames have odometry.
+  for (const auto& f : ReadFixture("carmen_interpolation.clf")) {
+    EXPECT_TRUE(f.has_odometry);
+  }
+  for (const auto& f : ReadFixture("carmen_robotlaser_interleaved.clf")) {
+    EXPECT_TRUE(f.has_odometry);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+std::string WriteTempLog(const std::string& dir_name, const std::string& text) {
+  const auto dir = testing::MakeTempDir(dir_name);
+  const std::string path = (dir / "log.clf").string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(CarmenReader, SynthesizesTimesWhenTheLogHasNoTimestampFields) {
+  // laserazos: FLASER n ranges x y theta odom_x odom_y odom_theta, nothing after.
+  const std::string path = WriteTempLog("carmen_untimed",
+                                        "FLASER 3 1.0 2.0 3.0 0.5 0.0 0.1 0.5 0.0 0.1\n"
+                                        "FLASER 3 1.0 2.0 3.0 0.6 0.0 0.1 0.6 0.0 0.1\n"
+                                        "FLASER 3 1.0 2.0 3.0 0.7 0.0 0.1 0.7 0.0 0.1\n");
+  CarmenStats stats;
+  auto frames = ReadCarmenLog(path, {}, &stats);
+  ASSERT_TRUE(frames.ok()) << frames.error().ToString();
+  ASSERT_EQ(frames.value().size(), 3U);
+  EXPECT_EQ(stats.synthesized_timestamps, 3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(frames.value()[k].time, FromSeconds(0.1 * static_cast<double>(k)));  // 10 Hz
+    EXPECT_NEAR(frames.value()[k].T_odom_base.x(), 0.5 + 0.1 * static_cast<double>(k), 1e-9);
+    EXPECT_TRUE(frames.value()[k].has_odometry);
+  }
+  CarmenOptions options;
+  options.timestamp_rate = 4.0;
+  frames = ReadCarmenLog(path, options);
+  ASSERT_TRUE(frames.ok());
+  EXPECT_EQ(frames.value()[2].time, FromSeconds(0.5));
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+}
+
+TEST(CarmenReader, OrebroStyleZeroOdometryAndNoIpcTimestamp) {
+  // orebro: `... x y theta 0 0 0 pippo 0`: no ipc_timestamp, the odometry in the laser triple.
+  const std::string path = WriteTempLog("carmen_orebro",
+                                        "FLASER 2 1.0 2.0 0 0 -0.001 0 0 0 pippo 0\n"
+                                        "FLASER 2 1.0 2.0 0.5 0.03 0.05 0 0 0 pippo 0\n");
+  CarmenStats stats;
+  auto frames = ReadCarmenLog(path, {}, &stats);
+  ASSERT_TRUE(frames.ok()) << frames.error().ToString();
+  ASSERT_EQ(frames.value().size(), 2U);
+  EXPECT_EQ(stats.synthesized_timestamps, 2);
+  EXPECT_EQ(frames.value()[1].time, FromSeconds(0.1));
+  EXPECT_TRUE(IsApprox(frames.value()[1].T_odom_base, Pose2(0.5, 0.03, 0.05)));
+  EXPECT_TRUE(IsApprox(frames.value()[1].T_base_laser, Pose2::Identity()));
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+}
+
+TEST(CarmenReader, TimestampZeroOnTheFirstLaserLineSynthesizesTimes) {
+  const std::string path =
+      WriteTempLog("carmen_zero_time",
+                   "ODOM 0 0 0 0 0 0 0 h 0\n"
+                   "RAWLASER1 0 -1.570796 3.141593 0.785398 81.90 0.01 0 2 1.00 1.00 0 0 h 0\n"
+                   "ODOM 1 0 0 0 0 0 0 h 0\n"
+                   "RAWLASER1 0 -1.570796 3.141593 0.785398 81.90 0.01 0 2 1.00 1.00 0 0 h 0\n");
+  auto frames = ReadCarmenLog(path, {});
+  ASSERT_TRUE(frames.ok()) << frames.error().ToString();
+  ASSERT_EQ(frames.value().size(), 2U);
+  EXPECT_EQ(frames.value()[1].time, FromSeconds(0.1));
+  // The ODOM line before each laser line gets its time: the second scan sits on x = 1.
+  EXPECT_NEAR(frames.value()[1].T_odom_base.x(), 1.0, 1e-9);
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+}
+
+TEST(CarmenReader, MissingTimestampInATimedLogIsAnError) {
+  const std::string path = WriteTempLog("carmen_missing_time",
+                                        "FLASER 2 1.0 2.0 0 0 0 0 0 0 10.0 h 0\n"
+                                        "FLASER 2 1.0 2.0 0 0 0 0 0 0\n");
+  auto frames = ReadCarmenLog(path, {});
+  ASSERT_FALSE(frames.ok());
+  EXPECT_EQ(frames.error().line, 2);
+  EXPECT_NE(frames.error().message.find("ipc_timestamp"), std::string::npos);
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+}
+
 TEST(CarmenReader, MissingFileIsNotFound) {
   auto r = CarmenReader::Open("/nonexistent/log.clf", {});
   ASSERT_FALSE(r.ok());

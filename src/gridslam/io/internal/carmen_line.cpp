@@ -75,13 +75,27 @@ class Fields {
     }
     return Status::Ok();
   }
-  Status Timestamp(std::string_view& text, Time& time) {
-    GRIDSLAM_RETURN_IF_ERROR(Next("ipc_timestamp", text));
-    const auto parsed = ParseSeconds(text);
-    if (!parsed) {
-      return Bad("ipc_timestamp", text, "decimal seconds");
+  /// The ipc_timestamp, or out.time_missing when the line has none: no field left (laserazos),
+  /// or only `host logger_timestamp` left (orebro's `... pippo 0`).
+  Status Timestamp(CarmenMessage& out) {
+    out.time_missing = false;
+    out.time = Time();
+    out.time_text = std::string_view();
+    if (pos_ >= tokens_.size()) {
+      out.time_missing = true;
+      return Status::Ok();
     }
-    time = *parsed;
+    GRIDSLAM_RETURN_IF_ERROR(Next("ipc_timestamp", out.time_text));
+    const auto parsed = ParseSeconds(out.time_text);
+    if (!parsed) {
+      if (pos_ + 1 == tokens_.size()) {  // `host logger_timestamp`: no ipc_timestamp
+        out.time_missing = true;
+        out.time_text = std::string_view();
+        return Status::Ok();
+      }
+      return Bad("ipc_timestamp", out.time_text, "decimal seconds");
+    }
+    out.time = *parsed;
     return Status::Ok();
   }
   Status Token(const char* name, std::string_view& token) { return Next(name, token); }
@@ -155,7 +169,7 @@ Status ParseRawOrRobotLaser(Fields& f, bool robot, const CarmenOptions& options,
     out.laser_pose = laser_pose;
     out.robot_pose = robot_pose;
   }
-  return f.Timestamp(out.time_text, out.time);
+  return f.Timestamp(out);
 }
 
 Status ParseOldLaser(Fields& f, const CarmenOptions& options, CarmenMessage& out) {
@@ -173,7 +187,7 @@ Status ParseOldLaser(Fields& f, const CarmenOptions& options, CarmenMessage& out
                                                                   : GuessLaserAngleIncrement(n);
   out.scan.range_min = 0.0;
   out.scan.range_max = EffectiveRangeMax(options, 80.0);  // CARMEN's guess for FLASER
-  return f.Timestamp(out.time_text, out.time);
+  return f.Timestamp(out);
 }
 
 }  // namespace
@@ -231,12 +245,12 @@ Status ParseCarmenMessage(const std::vector<std::string_view>& tokens, const Car
       GRIDSLAM_RETURN_IF_ERROR(f.Double("tv", ignored));
       GRIDSLAM_RETURN_IF_ERROR(f.Double("rv", ignored));
       GRIDSLAM_RETURN_IF_ERROR(f.Double("accel", ignored));
-      return f.Timestamp(out.time_text, out.time);
+      return f.Timestamp(out);
     }
     case CarmenKind::kTruePos:
       GRIDSLAM_RETURN_IF_ERROR(f.PoseField("true", out.pose));
       GRIDSLAM_RETURN_IF_ERROR(f.PoseField("odom", out.odom_pose));
-      return f.Timestamp(out.time_text, out.time);
+      return f.Timestamp(out);
     case CarmenKind::kParam:
       GRIDSLAM_RETURN_IF_ERROR(f.Token("param_name", out.param_name));
       GRIDSLAM_RETURN_IF_ERROR(f.Token("param_value", out.param_value));

@@ -24,6 +24,8 @@ struct CarmenMessage {
   std::string_view tag;        ///< First token (message type).
   std::string_view time_text;  ///< The ipc_timestamp token as printed.
   Time time;                   ///< ipc_timestamp.
+  /// The line has no ipc_timestamp (none left, or only `host logger_timestamp`); time is 0.
+  bool time_missing = false;
   // ODOM: pose. TRUEPOS: pose = true pose, odom_pose = odometry.
   Pose2 pose;
   Pose2 odom_pose;
