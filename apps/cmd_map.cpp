@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 
 #include "app_map_output.hpp"
 #include "command.hpp"
@@ -60,9 +60,9 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
 int RunMap(const MapArgs& args, AppContext& context) {
   const auto start = Clock::now();
   const int num_robots = static_cast<int>(args.logs.size());
-  std::vector<io::CarmenReader> readers;
+  std::vector<recording::RecordingReader> readers;
   for (const std::string& log : args.logs) {
-    auto reader = io::CarmenReader::Open(log, context.options.log);
+    auto reader = recording::RecordingReader::Open(log, context.Recording());
     if (!reader.ok()) {
       return ReportError(reader.error());
     }
@@ -176,7 +176,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
 
 RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<MapArgs>();
-  sub.add_option("LOG", args->logs, "CARMEN log(s), one per robot (optionally gzip-compressed)")
+  sub.add_option(
+         "LOG", args->logs,
+         "Recording(s), one per robot: CARMEN log (optionally gzip-compressed), ROS 1 .bag, "
+         "MCAP .mcap, rosbag2 folder or .db3")
       ->required();
   sub.add_option("-o,--output", args->output, "Output folder")->required();
   return [args](AppContext& ctx) { return RunMap(*args, ctx); };

@@ -43,6 +43,14 @@ int Main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
   app.add_flag("--lenient", context.options.log.lenient,
                "Skip and count malformed log lines instead of failing");
+  app.add_option("--scan-topic", context.bag.scan_topic,
+                 "Bags: sensor_msgs/LaserScan topic (default: the only one)");
+  app.add_option("--odom-topic", context.bag.odom_topic,
+                 "Bags: nav_msgs/Odometry topic (default: the only one, else TF odom->base_link)");
+  app.add_option("--odom-frame", context.bag.odom_frame,
+                 "Bags: odometry from TF with this odometry frame (default odom)");
+  app.add_option("--base-frame", context.bag.base_frame,
+                 "Bags: robot frame (default: the odometry's child frame, else base_link)");
 
   std::vector<std::pair<CLI::App*, RunFunction>> runners;
   for (auto& spec : Commands()) {

@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "gridslam/geometry/pose2.hpp"
+#include "gridslam/io/timestamp_repair.hpp"
 
 namespace gridslam::recording {
 namespace {
@@ -34,6 +35,7 @@ class Collector {
 
   Status operator()(std::size_t index, std::int64_t log_ns, std::span<const std::uint8_t> data) {
     const BagTopic& topic = bag_->topics[index];
+    ++sequence_;
     if (first_) {
       bag_->first_log_ns = bag_->last_log_ns = log_ns;
       first_ = false;
@@ -48,6 +50,7 @@ class Collector {
           if (m.value().stamp_ns == 0) {
             m.value().stamp_ns = log_ns;
           }
+          m.value().sequence = sequence_;
           bag_->scans[topic.topic].push_back(std::move(m).value());
         } else {
           s = m.error();
@@ -60,6 +63,7 @@ class Collector {
           if (m.value().stamp_ns == 0) {
             m.value().stamp_ns = log_ns;
           }
+          m.value().sequence = sequence_;
           bag_->odometry[topic.topic].push_back(std::move(m).value());
         } else {
           s = m.error();
@@ -74,6 +78,7 @@ class Collector {
           for (TransformMessage& t : m.value()) {
             t.parent = StripSlash(t.parent);
             t.child = StripSlash(t.child);
+            t.sequence = sequence_;
             out.push_back(std::move(t));
           }
         } else {
@@ -99,6 +104,7 @@ class Collector {
   BagContents* bag_;
   bool lenient_;
   bool first_ = true;
+  std::uint64_t sequence_ = 0;
 };
 
 Result<std::vector<std::uint8_t>> ReadFileBytes(const std::string& path) {
@@ -123,6 +129,7 @@ Error WithPath(const Error& e, const std::string& path) {
 struct Sample {
   std::int64_t stamp_ns;
   Pose2 pose;
+  std::uint64_t sequence = 0;
 };
 
 Pose2 Interpolate(const std::vector<Sample>& samples, std::int64_t t, bool* clamped) {
@@ -166,6 +173,45 @@ std::optional<Pose2> Chain(const Tree& tree, const std::string& ancestor,
     frame = it->second.first;
   }
   return std::nullopt;  // a cycle
+}
+
+// Repairs the scan times and the odometry sample stamps in place; returns how many changed.
+long RepairStamps(const std::vector<const ScanMessage*>& scans,
+                  std::vector<std::int64_t>* scan_time, std::vector<Sample>* samples) {
+  // (sequence, scan index or -1 - sample index) in storage order.
+  std::vector<std::pair<std::uint64_t, long>> stream;
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    stream.emplace_back(scans[i]->sequence, static_cast<long>(i));
+  }
+  for (std::size_t i = 0; i < samples->size(); ++i) {
+    stream.emplace_back((*samples)[i].sequence, -1 - static_cast<long>(i));
+  }
+  std::sort(stream.begin(), stream.end());
+  io::TimestampRepairer repairer;
+  long repaired = 0;
+  const auto apply = [&](std::uint64_t id, Time t) {
+    const long who = stream[id].second;
+    std::int64_t& stamp = who >= 0 ? (*scan_time)[static_cast<std::size_t>(who)]
+                                   : (*samples)[static_cast<std::size_t>(-1 - who)].stamp_ns;
+    const std::int64_t value = t.time_since_epoch().count();
+    repaired += value != stamp ? 1 : 0;
+    stamp = value;
+  };
+  for (std::size_t id = 0; id < stream.size(); ++id) {
+    const long who = stream[id].second;
+    const std::int64_t stamp = who >= 0 ? (*scan_time)[static_cast<std::size_t>(who)]
+                                        : (*samples)[static_cast<std::size_t>(-1 - who)].stamp_ns;
+    const Time printed{Duration(stamp)};
+    repairer.Push(id, FormatSeconds(printed, 6), printed);
+    while (auto r = repairer.Pop()) {
+      apply(r->first, r->second);
+    }
+  }
+  repairer.Flush();
+  while (auto r = repairer.Pop()) {
+    apply(r->first, r->second);
+  }
+  return repaired;
 }
 
 Error Ambiguous(const std::string& what, const BagContents& bag) {
@@ -276,7 +322,8 @@ std::string ListTopics(const BagContents& bag) {
 }
 
 Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOptions& options,
-                                             double max_usable_range, BagAssembly* assembly) {
+                                             double max_usable_range, BagAssembly* assembly,
+                                             bool repair_timestamps) {
   BagAssembly local;
   BagAssembly& a = assembly != nullptr ? *assembly : local;
   a = BagAssembly{};
@@ -308,9 +355,6 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
   for (const ScanMessage& m : scans_it->second) {
     scans.push_back(&m);
   }
-  std::stable_sort(scans.begin(), scans.end(), [](const ScanMessage* x, const ScanMessage* y) {
-    return x->stamp_ns < y->stamp_ns;
-  });
   a.laser_frame = StripSlash(scans.front()->frame_id);
 
   // Odometry source.
@@ -339,7 +383,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
   if (!odom_topic.empty()) {
     const auto& msgs = bag.odometry.at(odom_topic);
     for (const OdometryMessage& m : msgs) {
-      samples.push_back({m.stamp_ns, m.T_odom_base});
+      samples.push_back({m.stamp_ns, m.T_odom_base, m.sequence});
     }
     if (base_frame.empty() && !msgs.empty()) {
       base_frame = StripSlash(msgs.front().child_frame_id);
@@ -358,7 +402,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
   std::map<std::string, std::vector<Sample>> dynamic;  // odom_frame -> child, by child
   for (const TransformMessage& t : bag.tf) {
     if (t.parent == odom_frame) {
-      dynamic[t.child].push_back({t.stamp_ns, t.T_parent_child});
+      dynamic[t.child].push_back({t.stamp_ns, t.T_parent_child, t.sequence});
     } else if (!tree.contains(t.child)) {
       tree[t.child] = {t.parent, t.T_parent_child};
     }
@@ -371,7 +415,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
         continue;
       }
       for (const Sample& s : list) {
-        samples.push_back({s.stamp_ns, s.pose * *T_child_base});
+        samples.push_back({s.stamp_ns, s.pose * *T_child_base, s.sequence});
       }
       a.odometry_source = "tf " + odom_frame + "->" + child +
                           (child != base_frame ? "->" + base_frame : std::string());
@@ -380,6 +424,15 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
     if (samples.empty() && tf_requested) {
       return Ambiguous("no TF odometry " + odom_frame + " -> " + base_frame + " in /tf", bag);
     }
+  }
+  // Timestamp repair (io/timestamp_repair.hpp) over the scans and odometry in storage order:
+  // bags converted from CARMEN logs keep their printed stamps, intel's unpadded ones included.
+  std::vector<std::int64_t> scan_time(scans.size());
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    scan_time[i] = scans[i]->stamp_ns;
+  }
+  if (repair_timestamps) {
+    a.repaired_timestamps = RepairStamps(scans, &scan_time, &samples);
   }
   std::stable_sort(samples.begin(), samples.end(),
                    [](const Sample& x, const Sample& y) { return x.stamp_ns < y.stamp_ns; });
@@ -395,7 +448,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
     if (auto T = Chain(tree, base_frame, a.laser_frame)) {
       T_base_laser = *T;
       a.mounting_from_tf = true;
-    } else {
+    } else if (!samples.empty()) {  // without odometry the robot frame is the laser's
       spdlog::warn(
           "no transform chain {} -> {} in /tf_static or /tf: laser assumed at the robot "
           "centre",
@@ -407,21 +460,21 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
 
   std::vector<Frame> frames;
   frames.reserve(scans.size());
-  long index = 0;
-  for (const ScanMessage* m : scans) {
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const ScanMessage* m = scans[i];
     Frame f;
     f.time = Time(Duration(m->stamp_ns));
-    f.corrected_time = f.time;
+    f.corrected_time = Time(Duration(scan_time[i]));
     f.scan = m->scan;
     f.scan.range_max = std::min(f.scan.range_max, max_usable_range);
     f.T_base_laser = T_base_laser;
-    f.source_line = ++index;
+    f.source_line = static_cast<long>(i) + 1;
     if (samples.empty()) {
       f.has_odometry = false;
       f.T_odom_base = Pose2::Identity();
     } else {
       bool clamped = false;
-      f.T_odom_base = Interpolate(samples, m->stamp_ns, &clamped);
+      f.T_odom_base = Interpolate(samples, scan_time[i], &clamped);
       a.scans_outside_odometry += clamped ? 1 : 0;
     }
     frames.push_back(std::move(f));

@@ -3,7 +3,7 @@
 //
 // Assembly (AssembleBagFrames):
 // - scans: the --scan-topic, else the only sensor_msgs/LaserScan topic; frames are ordered by
-//   header.stamp (the log time when the stamp is zero) and keep it as their identity;
+//   in storage order and keep header.stamp (the log time when it is zero) as their identity;
 // - odometry: the --odom-topic (nav_msgs/Odometry), else TF odom_frame -> base_frame when the
 //   frames are given, else the only Odometry topic, else TF odom -> base_link when /tf has it,
 //   else none (frames with has_odometry = false and identity odometry). The pose is
@@ -64,11 +64,16 @@ struct BagAssembly {
   bool mounting_from_tf = false;
   long odometry_samples = 0;
   long scans_outside_odometry = 0;  ///< Scans clamped to the first/last odometry sample.
+  long repaired_timestamps = 0;     ///< Scan and odometry stamps changed by the repair.
 };
 
-/// The frames of a loaded bag (see the file comment). max_usable_range caps range_max [m].
+/// The frames of a loaded bag (see the file comment), in the bag's storage order. Frame::time is
+/// header.stamp; with repair_timestamps, Frame::corrected_time (and the odometry stamps used for
+/// interpolation) go through the CARMEN timestamp repair (io/timestamp_repair.hpp), which leaves
+/// correct stamps unchanged. max_usable_range caps range_max [m].
 Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOptions& options,
-                                             double max_usable_range, BagAssembly* assembly);
+                                             double max_usable_range, BagAssembly* assembly,
+                                             bool repair_timestamps = true);
 
 /// "  /scan  sensor_msgs/LaserScan  13631 messages" lines, one per topic.
 std::string ListTopics(const BagContents& bag);

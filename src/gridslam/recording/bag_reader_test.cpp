@@ -101,6 +101,21 @@ TEST_P(Ros1BagTest, TruncatedAndCorruptBagsAreErrors) {
 
 INSTANTIATE_TEST_SUITE_P(Compressions, Ros1BagTest, ::testing::Values("none", "bz2", "lz4"));
 
+TEST(Ros1Bag, ReadsAnUnindexedBagSequentially) {
+  const Bytes bytes = t::BuildRos1Bag(Topics(), Messages(MessageEncoding::kRos1), "bz2", false);
+  auto bag = LoadBagBytes(bytes, false);
+  ASSERT_TRUE(bag.ok()) << bag.error().ToString();
+  ExpectAssembled(bag.value());
+  EXPECT_FALSE(LoadBagBytes(std::span(bytes).first(bytes.size() / 2), false).ok());
+}
+
+TEST(Ros1Bag, IndexPointingPastTheEndIsTruncation) {
+  const Bytes bytes = t::BuildRos1Bag(Topics(), Messages(MessageEncoding::kRos1), "none");
+  auto bag = LoadBagBytes(std::span(bytes).first(bytes.size() - 40), false);
+  ASSERT_FALSE(bag.ok());
+  EXPECT_NE(bag.error().message.find("truncated"), std::string::npos) << bag.error().message;
+}
+
 TEST(Ros1Bag, WrongMagicIsAnError) {
   Bytes bytes = t::BuildRos1Bag(Topics(), Messages(MessageEncoding::kRos1), "none");
   bytes[9] = '1';

@@ -69,8 +69,8 @@ Result<RecordingReader> RecordingReader::Open(const std::string& path,
   state->format = bag.value().format == BagFormat::kRos1   ? RecordingFormat::kRos1Bag
                   : bag.value().format == BagFormat::kMcap ? RecordingFormat::kMcap
                                                            : RecordingFormat::kRosbag2;
-  auto frames =
-      AssembleBagFrames(bag.value(), options.bag, options.log.max_usable_range, &state->assembly);
+  auto frames = AssembleBagFrames(bag.value(), options.bag, options.log.max_usable_range,
+                                  &state->assembly, options.log.repair_timestamps);
   if (!frames.ok()) {
     Error e = frames.error();
     e.file = path;
@@ -91,6 +91,7 @@ Result<RecordingReader> RecordingReader::Open(const std::string& path,
   s.odometry = state->assembly.odometry_samples;
   s.scans_without_odometry = state->assembly.scans_outside_odometry;
   s.skipped_malformed = bag.value().skipped_malformed;
+  s.repaired_timestamps = state->assembly.repaired_timestamps;
   const BagAssembly& a = state->assembly;
   spdlog::info("{}: {} scans on {} ({}), odometry {} ({} samples), base {}, laser {}", path,
                state->frames.size(), a.scan_topic, RecordingFormatName(state->format),

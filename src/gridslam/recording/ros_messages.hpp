@@ -26,13 +26,15 @@ enum class MessageKind { kLaserScan, kOdometry, kTf, kOther };
 MessageKind KindOfType(const std::string& type);
 
 struct ScanMessage {
-  std::int64_t stamp_ns = 0;  ///< header.stamp [ns].
+  std::uint64_t sequence = 0;  ///< Position in the bag's storage order (set by the bag reader).
+  std::int64_t stamp_ns = 0;   ///< header.stamp [ns].
   std::string frame_id;
   double angle_max = 0.0;  ///< [rad] (LaserScan keeps angle_min and the increment).
   LaserScan scan;
 };
 
 struct OdometryMessage {
+  std::uint64_t sequence = 0;
   std::int64_t stamp_ns = 0;
   std::string frame_id;        ///< Odometry frame (e.g. odom).
   std::string child_frame_id;  ///< Robot frame (e.g. base_link).
@@ -40,6 +42,7 @@ struct OdometryMessage {
 };
 
 struct TransformMessage {
+  std::uint64_t sequence = 0;
   std::int64_t stamp_ns = 0;
   std::string parent;  ///< header.frame_id.
   std::string child;   ///< child_frame_id.

@@ -16,6 +16,7 @@ namespace {
 constexpr std::uint8_t kOpMessage = 0x02;
 constexpr std::uint8_t kOpBagHeader = 0x03;
 constexpr std::uint8_t kOpChunk = 0x05;
+constexpr std::uint8_t kOpChunkInfo = 0x06;
 constexpr std::uint8_t kOpConnection = 0x07;
 
 using Fields = std::map<std::string, std::span<const std::uint8_t>, std::less<>>;
@@ -103,6 +104,56 @@ class Ros1Walker {
     return Status::Ok();
   }
 
+  // The index section: connection records (registered) and chunk-info records (positions).
+  Status WalkIndex(std::span<const std::uint8_t> bytes, std::size_t base,
+                   std::vector<std::uint64_t>* chunk_positions) {
+    ByteReader r(bytes);
+    while (!r.AtEnd()) {
+      const std::size_t at = base + r.position();
+      const std::uint32_t header_len = r.U32();
+      auto header = r.Bytes(header_len);
+      const std::uint32_t data_len = r.U32();
+      auto data = r.Bytes(data_len);
+      const auto fields = r.ok() ? ParseFields(header) : std::nullopt;
+      const auto op = fields ? FieldValue<std::uint8_t>(*fields, "op") : std::nullopt;
+      if (!op) {
+        return InvalidInput("index record at byte " + std::to_string(at) +
+                            " is truncated or malformed (truncated or corrupt bag)");
+      }
+      if (*op == kOpConnection) {
+        GRIDSLAM_RETURN_IF_ERROR(Connection(*fields, data, at));
+      } else if (*op == kOpChunkInfo) {
+        const auto pos = FieldValue<std::uint64_t>(*fields, "chunk_pos");
+        if (!pos) {
+          return InvalidInput("chunk-info record at byte " + std::to_string(at) +
+                              " has no chunk_pos");
+        }
+        chunk_positions->push_back(*pos);
+      }
+    }
+    return Status::Ok();
+  }
+
+  // One chunk record at the start of `bytes`.
+  Status WalkOne(std::span<const std::uint8_t> bytes, std::size_t at) {
+    ByteReader r(bytes);
+    const std::uint32_t header_len = r.U32();
+    auto header = r.Bytes(header_len);
+    const std::uint32_t data_len = r.U32();
+    auto data = r.Bytes(data_len);
+    if (!r.ok()) {
+      return InvalidInput("chunk at byte " + std::to_string(at) +
+                          " runs past the end of the file (truncated bag)");
+    }
+    const auto fields = ParseFields(header);
+    const auto op = fields ? FieldValue<std::uint8_t>(*fields, "op") : std::nullopt;
+    if (!op || *op != kOpChunk) {
+      return InvalidInput("no chunk record at byte " + std::to_string(at) +
+                          ", where the index points (corrupt bag)");
+    }
+    return Chunk(*fields, data, at);
+  }
+
  private:
   Status Chunk(const Fields& f, std::span<const std::uint8_t> data, std::size_t at) {
     const std::string compression = FieldString(f, "compression");
@@ -180,7 +231,38 @@ Status ReadRos1Bag(std::span<const std::uint8_t> file, std::vector<BagTopic>* to
     return InvalidInput("not a ROS 1 bag v2.0 (wrong magic)");
   }
   Ros1Walker walker(topics, sink);
-  return walker.Walk(file.subspan(kRos1Magic.size()), kRos1Magic.size(), false);
+  // Indexed bag: the bag header's index_pos leads to the connection and chunk-info records,
+  // which give each chunk's position (as rosbag reads it; some writers put wrong lengths on
+  // the index records between chunks, so the chunks are not walked back to back). An
+  // unindexed bag (index_pos 0, e.g. a recording that was not closed) is walked sequentially.
+  ByteReader r(file.subspan(kRos1Magic.size()));
+  const std::uint32_t header_len = r.U32();
+  const auto header = r.Bytes(header_len);
+  const auto fields = r.ok() ? ParseFields(header) : std::nullopt;
+  const auto op = fields ? FieldValue<std::uint8_t>(*fields, "op") : std::nullopt;
+  if (!op || *op != kOpBagHeader) {
+    return InvalidInput("the bag does not start with a bag header record (corrupt bag)");
+  }
+  const auto index_pos = FieldValue<std::uint64_t>(*fields, "index_pos");
+  if (!index_pos || *index_pos == 0) {
+    return walker.Walk(file.subspan(kRos1Magic.size()), kRos1Magic.size(), false);
+  }
+  if (*index_pos >= file.size()) {
+    return InvalidInput("truncated bag: its index starts at byte " + std::to_string(*index_pos) +
+                        " but the file has " + std::to_string(file.size()) + " bytes");
+  }
+  std::vector<std::uint64_t> chunk_positions;
+  GRIDSLAM_RETURN_IF_ERROR(
+      walker.WalkIndex(file.subspan(*index_pos), *index_pos, &chunk_positions));
+  for (const std::uint64_t pos : chunk_positions) {
+    if (pos >= file.size()) {
+      return InvalidInput("truncated bag: chunk at byte " + std::to_string(pos) +
+                          " is past the end of the file (" + std::to_string(file.size()) +
+                          " bytes)");
+    }
+    GRIDSLAM_RETURN_IF_ERROR(walker.WalkOne(file.subspan(pos), pos));
+  }
+  return Status::Ok();
 }
 
 }  // namespace gridslam::recording::internal

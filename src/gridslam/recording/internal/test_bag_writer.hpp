@@ -197,10 +197,10 @@ inline Bytes Compress(const Bytes& raw, const std::string& how) {
   return raw;
 }
 
-/// compression: "none", "bz2" or "lz4".
+/// compression: "none", "bz2" or "lz4". indexed = false writes index_pos 0 (an unclosed bag).
 inline Bytes BuildRos1Bag(const std::vector<TestTopic>& topics,
                           const std::vector<TestMessage>& messages,
-                          const std::string& compression) {
+                          const std::string& compression, bool indexed = true) {
   Bytes chunk;
   for (std::size_t i = 0; i < topics.size(); ++i) {
     Ros1Connection(chunk, static_cast<int>(i), topics[i]);
@@ -231,14 +231,25 @@ inline Bytes BuildRos1Bag(const std::vector<TestTopic>& topics,
   {
     Bytes h;
     Ros1Field(h, "op", {0x03});
-    Ros1Field(h, "index_pos", Le<std::uint64_t>(index_pos));
+    Ros1Field(h, "index_pos", Le<std::uint64_t>(indexed ? index_pos : 0));
     Ros1Field(h, "conn_count", Le<std::uint32_t>(static_cast<std::uint32_t>(topics.size())));
     Ros1Field(h, "chunk_count", Le<std::uint32_t>(1));
     Ros1Record(out, h, Bytes(16, ' '));
   }
   out.insert(out.end(), body.begin(), body.end());
+  const std::uint64_t chunk_pos = out.size() - body.size();
   for (std::size_t i = 0; i < topics.size(); ++i) {
     Ros1Connection(out, static_cast<int>(i), topics[i]);
+  }
+  if (indexed) {
+    Bytes h;
+    Ros1Field(h, "op", {0x06});
+    Ros1Field(h, "ver", Le<std::uint32_t>(1));
+    Ros1Field(h, "chunk_pos", Le<std::uint64_t>(chunk_pos));
+    Ros1Field(h, "start_time", Le<std::uint64_t>(0));
+    Ros1Field(h, "end_time", Le<std::uint64_t>(0));
+    Ros1Field(h, "count", Le<std::uint32_t>(0));
+    Ros1Record(out, h, {});
   }
   return out;
 }
