@@ -68,11 +68,6 @@ int RunMap(const MapArgs& args, AppContext& context) {
     }
     readers.push_back(std::move(reader).value());
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
-  }
 
   pipeline::Mapper mapper(context.options, num_robots);
   std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
@@ -92,6 +87,12 @@ int RunMap(const MapArgs& args, AppContext& context) {
     if (auto error = advance(r)) {
       return ReportError(*error);
     }
+  }
+  // Created only once every recording has delivered a scan: a refused input leaves nothing.
+  std::error_code ec;
+  std::filesystem::create_directories(args.output, ec);
+  if (ec) {
+    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
   }
   const bool progress = isatty(fileno(stderr)) != 0;
   long processed = 0;

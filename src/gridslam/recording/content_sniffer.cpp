@@ -147,6 +147,10 @@ SniffResult SniffBytes(std::span<const std::uint8_t> head) {
   if (StartsWith(head, "\x89PNG")) {
     return {ContentKind::kNotRecording, "a PNG image"};
   }
+  if (head.size() >= 3 && head[0] == 'P' && (head[1] == '2' || head[1] == '5') &&
+      std::isspace(head[2]) != 0) {
+    return {ContentKind::kNotRecording, "a PGM image"};
+  }
   if (StartsWith(head, "\xFF\xD8\xFF")) {
     return {ContentKind::kNotRecording, "a JPEG image"};
   }

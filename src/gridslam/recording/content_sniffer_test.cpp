@@ -33,6 +33,7 @@ TEST(ContentSniffer, SaysWhatOtherFilesLookLike) {
   ExpectNot("VERTEX2 0 0 0 0\nEDGE2 0 1 1 0 0 1 0 1 1 0 0\n", "TORO");
   ExpectNot("\x89PNG\r\n\x1a\n", "PNG");
   ExpectNot("P5\n10 10\n255\n", "PGM");
+  ExpectNot(std::string_view("P5\n2 2\n255\n\0\0\0\xff", 15), "PGM");
   ExpectNot("", "empty");
   ExpectNot("# only\n# comments\n", "only comments");
   ExpectNot("976052857.1 976052858.2 0.1 0 0 0 0 0.01\n976052859.1 976052860.2 0.1 0 0 0 0 0\n",
