@@ -379,7 +379,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
         bag);
   }
   std::vector<Sample> samples;
-  std::string base_frame = options.base_frame;
+  std::string base_frame = StripSlash(options.base_frame);
   if (!odom_topic.empty()) {
     const auto& msgs = bag.odometry.at(odom_topic);
     for (const OdometryMessage& m : msgs) {
@@ -390,7 +390,8 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
     }
     a.odometry_source = odom_topic;
   }
-  const std::string odom_frame = options.odom_frame.empty() ? "odom" : options.odom_frame;
+  const std::string odom_frame =
+      options.odom_frame.empty() ? "odom" : StripSlash(options.odom_frame);
   if (base_frame.empty()) {
     base_frame = "base_link";
   }

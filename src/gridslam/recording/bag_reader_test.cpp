@@ -109,6 +109,14 @@ TEST(Ros1Bag, ReadsAnUnindexedBagSequentially) {
   EXPECT_FALSE(LoadBagBytes(std::span(bytes).first(bytes.size() / 2), false).ok());
 }
 
+TEST(Ros1Bag, FollowsTheChunkIndexPastAMisleadingRecordLength) {
+  const Bytes bytes =
+      t::BuildRos1Bag(Topics(), Messages(MessageEncoding::kRos1), "none", true, true);
+  auto bag = LoadBagBytes(bytes, false);
+  ASSERT_TRUE(bag.ok()) << bag.error().ToString();
+  ExpectAssembled(bag.value());
+}
+
 TEST(Ros1Bag, IndexPointingPastTheEndIsTruncation) {
   const Bytes bytes = t::BuildRos1Bag(Topics(), Messages(MessageEncoding::kRos1), "none");
   auto bag = LoadBagBytes(std::span(bytes).first(bytes.size() - 40), false);
@@ -176,8 +184,11 @@ TEST(BagAssembly, TfOdometryWhenRequestedOrWithoutAnOdometryTopic) {
   EXPECT_EQ(a.odometry_source, "tf odom->base_link");
   ExpectAssembled(bag);
   BagOptions options;
-  options.odom_frame = "odom";
+  options.odom_frame = "/odom";  // a leading slash (ROS 1 style) names the same frame
   ExpectAssembled(Load(Topics(), Messages(MessageEncoding::kRos1)), options);
+  ASSERT_TRUE(
+      AssembleBagFrames(Load(Topics(), Messages(MessageEncoding::kRos1)), options, 80.0, &a).ok());
+  EXPECT_EQ(a.odometry_source, "tf odom->base_link");  // requested TF wins over /odom
 }
 
 TEST(BagAssembly, TfOdometryThroughAnIntermediateFrame) {

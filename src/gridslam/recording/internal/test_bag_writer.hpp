@@ -199,8 +199,8 @@ inline Bytes Compress(const Bytes& raw, const std::string& how) {
 
 /// compression: "none", "bz2" or "lz4". indexed = false writes index_pos 0 (an unclosed bag).
 inline Bytes BuildRos1Bag(const std::vector<TestTopic>& topics,
-                          const std::vector<TestMessage>& messages,
-                          const std::string& compression, bool indexed = true) {
+                          const std::vector<TestMessage>& messages, const std::string& compression,
+                          bool indexed = true, bool misleading_index_length = false) {
   Bytes chunk;
   for (std::size_t i = 0; i < topics.size(); ++i) {
     Ros1Connection(chunk, static_cast<int>(i), topics[i]);
@@ -222,6 +222,18 @@ inline Bytes BuildRos1Bag(const std::vector<TestTopic>& topics,
     Ros1Field(h, "compression", Str(compression));
     Ros1Field(h, "size", Le<std::uint32_t>(static_cast<std::uint32_t>(chunk.size())));
     Ros1Record(body, h, packed);
+  }
+  if (misleading_index_length) {
+    // An index-data record whose data length claims more than it holds (as in some old bags):
+    // readers that walk record by record lose their way; the chunk-info index stays right.
+    Bytes h;
+    Ros1Field(h, "op", {0x04});
+    Ros1Field(h, "ver", Le<std::uint32_t>(1));
+    Ros1Field(h, "conn", Le<std::uint32_t>(0));
+    Ros1Field(h, "count", Le<std::uint32_t>(0));
+    PutRaw<std::uint32_t>(body, static_cast<std::uint32_t>(h.size()));
+    body.insert(body.end(), h.begin(), h.end());
+    PutRaw<std::uint32_t>(body, 1000000);
   }
   Bytes out = Str("#ROSBAG V2.0\n");
   Bytes bag_header_record;
