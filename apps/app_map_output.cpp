@@ -2,70 +2,15 @@
 
 #include <filesystem>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/g2o_io.hpp"
 #include "gridslam/io/map_io.hpp"
 #include "gridslam/io/trajectory_io.hpp"
 
+#include "app_map_pictures.hpp"
+
 namespace gridslam::app {
-namespace {
-
-// map_graph.png: the map in grey, each robot's trajectory in its colour, key maps as dots and
-// accepted loop closures as green lines.
-Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
-                         const pipeline::MapperResult& result, int component) {
-  const MapLimits& limits = map.Limits();
-  cv::Mat image(limits.Height(), limits.Width(), CV_8UC3);
-  for (int j = 0; j < limits.Height(); ++j) {
-    for (int i = 0; i < limits.Width(); ++i) {
-      const signed char v = map(i, j);
-      const std::uint8_t g = v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
-      image.at<cv::Vec3b>(limits.Height() - 1 - j, i) = cv::Vec3b(g, g, g);
-    }
-  }
-  const auto pixel = [&](const Eigen::Vector2d& p) {
-    const Eigen::Vector2d c = (p - limits.Origin()) / limits.Resolution();
-    return cv::Point(static_cast<int>(c.x()), limits.Height() - 1 - static_cast<int>(c.y()));
-  };
-  const std::vector<cv::Scalar> colours = {{0, 0, 220}, {220, 0, 0}, {0, 140, 0}, {0, 140, 255}};
-  for (std::size_t r = 0; r < result.trajectories.size(); ++r) {
-    if (result.component_of_robot[r] != component) {
-      continue;
-    }
-    const auto& trajectory = result.trajectories[r];
-    for (std::size_t k = 1; k < trajectory.size(); ++k) {
-      cv::line(image, pixel(trajectory[k - 1].T_map_base.translation()),
-               pixel(trajectory[k].T_map_base.translation()), colours[r % colours.size()], 1);
-    }
-  }
-  const pose_graph::PoseGraph& graph = result.graph;
-  const auto in_component = [&](int id) {
-    return result.component_of_robot[static_cast<std::size_t>(
-               result.vertex_robot[static_cast<std::size_t>(id)])] == component;
-  };
-  for (const pipeline::ClosureRecord& c : result.closures) {
-    if ((c.outcome == "accepted" || c.outcome == "joined") && in_component(c.from)) {
-      cv::line(image, pixel(graph.vertex(graph.IndexOf(c.from)).T_map_v.translation()),
-               pixel(graph.vertex(graph.IndexOf(c.to)).T_map_v.translation()),
-               cv::Scalar(0, 200, 0), 1);
-    }
-  }
-  for (const auto& v : graph.vertices()) {
-    if (in_component(v.id)) {
-      cv::circle(image, pixel(v.T_map_v.translation()), 2, cv::Scalar(120, 60, 0), -1);
-    }
-  }
-  if (!cv::imwrite(path, image)) {
-    return RuntimeError("cannot write " + path);
-  }
-  return Status::Ok();
-}
-
-}  // namespace
 
 Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& result,
                        const std::vector<RobotOutput>& robots, const std::string& trajectory_frame,
@@ -92,7 +37,7 @@ Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& res
     fusion::FusionOptions fusion;  // thresholds only
     const OccupancyImage image = fusion::ToOccupancy(result.maps[c], fusion);
     GRIDSLAM_RETURN_IF_ERROR(io::WriteMap((out / (stem + ".yaml")).string(), stem + ".pgm", image));
-    GRIDSLAM_RETURN_IF_ERROR(io::WriteMapImage((out / (stem + ".png")).string(), image));
+    GRIDSLAM_RETURN_IF_ERROR(WriteMapPicture((out / (stem + ".png")).string(), image));
     GRIDSLAM_RETURN_IF_ERROR(WriteGraphPicture((out / (stem + "_graph.png")).string(), image,
                                                result, static_cast<int>(c)));
     nlohmann::json robots_in = nlohmann::json::array();

@@ -129,7 +129,7 @@ RunFunction SetupKeymaps(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("LOG", args->log,
                  "Recording: CARMEN log (optionally gzip-compressed) or bag (.bag, .mcap, rosbag2)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_option("--distance-clamp", args->distance_clamp,
                  "Distances at or beyond this are white in the distance images [m]");
   return [args](AppContext& ctx) { return RunKeymaps(*args, ctx); };

@@ -2,18 +2,23 @@
 // LOG is one robot with its own odometry frame and unknown start; their frames are processed
 // interleaved by time, as a team would deliver them. Writes the map(s), the corrected
 // trajectories, the optimized graph, the effective configuration and a report into DIR.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <regex>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 
+#include "app_align_map.hpp"
 #include "app_map_output.hpp"
 #include "command.hpp"
 #include <unistd.h>
@@ -23,9 +28,54 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Version of report.json's layout (docs/guide.md §3): raised when a field changes meaning or is
+/// removed; new fields may appear without a change.
+constexpr int kReportSchemaVersion = 1;
+
+/// Removes the files of an earlier `map` run in `dir` that this run did not write (e.g.
+/// trajectory_2.* of a 3-robot run, map_1.* of a run with two maps); returns how many.
+int RemoveStaleOutputs(const std::string& dir, std::size_t num_robots, std::size_t num_maps) {
+  std::set<std::string> written;
+  for (std::size_t r = 0; r < num_robots; ++r) {
+    const std::string stem = num_robots > 1 ? "trajectory_" + std::to_string(r) : "trajectory";
+    written.insert(stem + ".txt");
+    written.insert(stem + ".tum");
+  }
+  for (std::size_t c = 0; c < num_maps; ++c) {
+    const std::string stem = num_maps == 1 ? "map" : "map_" + std::to_string(c);
+    for (const char* suffix : {".yaml", ".pgm", ".png", "_graph.png"}) {
+      written.insert(stem + suffix);
+    }
+  }
+  static const std::regex kOutput(
+      "trajectory(_[0-9]+)?\\.(txt|tum)|map(_[0-9]+)?(\\.yaml|\\.pgm|\\.png|_graph\\.png)");
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file(ec) && std::regex_match(name, kOutput) && written.count(name) == 0 &&
+        std::filesystem::remove(entry.path(), ec)) {
+      ++removed;
+    }
+  }
+  return removed;
+}
+
+/// One progress line on a terminal: share of the logs read, elapsed time, ETA, scans/s.
+void PrintProgress(double fraction, double elapsed, const pipeline::MapperStats& s) {
+  const double rate = elapsed > 0.0 ? static_cast<double>(s.frames) / elapsed : 0.0;
+  const double eta = fraction > 0.01 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  std::fprintf(stderr,
+               "\rgridslam map: %3.0f%% of the log, %.0f s elapsed, ETA %.0f s, %.0f scans/s; "
+               "%ld key maps, %ld loop closures ",
+               100.0 * fraction, elapsed, eta, rate, s.key_maps, s.accepted);
+  std::fflush(stderr);
+}
+
 struct MapArgs {
   std::vector<std::string> logs;
   std::string output;
+  bool align_map = false;
 };
 
 nlohmann::json StatsJson(const pipeline::MapperStats& s) {
@@ -96,6 +146,11 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   const bool progress = isatty(fileno(stderr)) != 0;
   long processed = 0;
+  double total_bytes = 0.0;
+  for (const recording::RecordingReader& reader : readers) {
+    total_bytes += static_cast<double>(reader.TotalBytes());
+  }
+  auto last_progress = Clock::now();
   while (true) {
     // The robot whose next frame comes first (by the repaired time used for ordering).
     std::optional<std::size_t> robot;
@@ -120,21 +175,40 @@ int RunMap(const MapArgs& args, AppContext& context) {
     if (auto error = advance(r)) {
       return ReportError(*error);
     }
-    if (progress && ++processed % 250 == 0) {
-      const pipeline::MapperStats& s = mapper.Stats();
-      std::fprintf(stderr, "\rgridslam map: %ld scans, %ld key maps, %ld loop closures", s.frames,
-                   s.key_maps, s.accepted);
-      std::fflush(stderr);
+    if (progress && ++processed % 50 == 0 &&
+        (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
+      last_progress = Clock::now();
+      double read = 0.0;
+      for (const recording::RecordingReader& reader : readers) {
+        read += static_cast<double>(reader.BytesRead());
+      }
+      PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
+                    std::chrono::duration<double>(last_progress - start).count(), mapper.Stats());
     }
   }
   if (progress) {
+    PrintProgress(1.0, std::chrono::duration<double>(Clock::now() - start).count(), mapper.Stats());
     std::fprintf(stderr, "\n");
   }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
+  nlohmann::json rotations = nlohmann::json::array();
+  if (args.align_map) {
+    const auto occupied =
+        static_cast<float>(ProbabilityToLogOdds(context.options.fusion.occupied_probability));
+    for (std::size_t c = 0; c < result.maps.size(); ++c) {
+      const double angle = DominantWallAngle(result.maps[c], occupied);
+      RotateMapFrame(result, static_cast<int>(c), angle, context.options.fusion.margin);
+      rotations.push_back(-angle);
+    }
+  }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
   nlohmann::json report = StatsJson(result.stats);
+  report["schema_version"] = kReportSchemaVersion;
+  if (args.align_map) {
+    report["map_rotation_rad"] = rotations;  // per map: rotation applied to its frame
+  }
   double duration = 0.0;
   nlohmann::json logs = nlohmann::json::array();
   for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -166,6 +240,11 @@ int RunMap(const MapArgs& args, AppContext& context) {
       !s.ok()) {
     return ReportError(s.error());
   }
+  if (const int removed = RemoveStaleOutputs(args.output, robots.size(), result.maps.size());
+      removed > 0) {
+    std::fprintf(stderr, "gridslam map: removed %d file(s) of an earlier run from %s\n", removed,
+                 args.output.c_str());
+  }
   const pipeline::MapperStats& s = result.stats;
   std::fprintf(stderr,
                "gridslam map: %ld scans, %ld key maps, %ld loop closures accepted (%ld verified, "
@@ -182,7 +261,10 @@ RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
          "Recording(s), one per robot: CARMEN log (optionally gzip-compressed), ROS 1 .bag, "
          "MCAP .mcap, rosbag2 folder or .db3")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
+  sub.add_flag("--align-map", args->align_map,
+               "Rotate the map frame so that the dominant wall directions lie along its axes "
+               "(default: the first key map's frame)");
   return [args](AppContext& ctx) { return RunMap(*args, ctx); };
 }
 

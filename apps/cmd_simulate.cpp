@@ -209,7 +209,7 @@ RunFunction SetupSimulate(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("--duration", args->duration,
                  "Simulated seconds per robot; 0 = one tour of the route (default)");
   sub.add_option("--route", args->route, "Waypoints file, 'x y' per line (world frame, metres)");
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   return [args](AppContext& ctx) { return RunSimulate(*args, ctx); };
 }
 

@@ -208,7 +208,7 @@ RunFunction SetupSplit(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("--max-offset", args->max_offset,
                  "Piece starts: x, y within +-M metres (default: split.max_translation)");
   sub.add_option("--seed", args->seed, "Random seed of the starts (default 1)");
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   return [args](AppContext& ctx) { return RunSplit(*args, ctx); };
 }
 

@@ -52,6 +52,11 @@ nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
         {"rejected", s.fallback_rejected},
         {"total", s.fallback_few_points + s.fallback_empty_map + s.fallback_rejected}}},
       {"correlative_searches", s.searches},
+      {"odometry",
+       {{"doubtful", s.odometry_doubtful},
+        {"missing", s.odometry_missing},
+        {"wide_searches", s.wide_searches},
+        {"constant_velocity_wins", s.constant_velocity_wins}}},
       {"insertions", s.insertions},
       {"key_maps", s.key_maps},
       {"distance_field", {{"rebuilds", s.field_rebuilds}, {"tile_updates", s.field_tile_updates}}}};
@@ -153,7 +158,7 @@ RunFunction SetupTrack(CLI::App& sub, AppContext& /*context*/) {
   sub.add_option("LOG", args->log,
                  "Recording: CARMEN log (optionally gzip-compressed) or bag (.bag, .mcap, rosbag2)")
       ->required();
-  sub.add_option("-o,--output", args->output, "Output folder")->required();
+  sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_flag("--no-match", args->no_match,
                "Do not match scans: the trajectory is the raw odometry (baseline)");
   return [args](AppContext& ctx) { return RunTrack(*args, ctx); };

@@ -4,8 +4,10 @@
 // argv and file paths; the library takes option structs.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -33,6 +35,28 @@ constexpr int kExitBadInput = 2;
 
 /// Prints an error and returns its exit code (2 for bad input, 1 otherwise).
 int ReportError(const Error& error);
+
+/// CLI11 check of an output folder (`-o DIR`): it may not exist yet, but neither it nor its
+/// nearest existing ancestor may be something other than a folder (a usage error, exit 2).
+inline CLI::Validator OutputFolder() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        std::error_code ec;
+        for (std::filesystem::path p(value); !p.empty(); p = p.parent_path()) {
+          if (std::filesystem::exists(p, ec)) {
+            if (!std::filesystem::is_directory(p, ec)) {
+              return "not a folder: " + p.string();
+            }
+            return {};
+          }
+          if (p == p.parent_path()) {
+            break;
+          }
+        }
+        return {};
+      },
+      "DIR");
+}
 
 /// A subcommand: `setup` adds the subcommand's options to `sub` and returns the function that
 /// runs it once parsing and configuration are done.

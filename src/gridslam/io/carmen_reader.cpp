@@ -343,6 +343,8 @@ Result<std::optional<Frame>> CarmenReader::Next() { return state_->Next(); }
 
 const CarmenStats& CarmenReader::Stats() const { return state_->stats; }
 
+long CarmenReader::BytesRead() const { return state_->reader.FileOffset(); }
+
 Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOptions& options,
                                          CarmenStats* stats) {
   auto reader = CarmenReader::Open(path, options);

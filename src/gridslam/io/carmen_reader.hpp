@@ -55,6 +55,8 @@ class CarmenReader {
   Result<std::optional<Frame>> Next();
 
   [[nodiscard]] const CarmenStats& Stats() const;
+  /// Bytes of the file read so far (compressed bytes for a gzip log), for progress reports.
+  [[nodiscard]] long BytesRead() const;
 
  private:
   CarmenReader();

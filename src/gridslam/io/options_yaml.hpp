@@ -4,6 +4,7 @@
 // `gridslam --print-config` shows and what every run saves beside its results.
 #pragma once
 
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -135,27 +136,89 @@ class YamlWriteVisitor {
   int indent_;
 };
 
+/// 1-based line of the first key of `root` whose dotted path ends in `dotted` (e.g.
+/// "refinement.max_points" matches loop_closure.refinement.max_points); 0 if none.
+long FindOptionLine(const YAML::Node& root, const std::string& dotted,
+                    const std::string& prefix = "");
+
+/// The line in `root` of the first option named in a validation message ("invalid option:
+/// fusion.resolution > 0"); 0 if the message names none that `root` sets.
+long FindValidationLine(const YAML::Node& root, const std::string& message);
+
 }  // namespace internal
 
-/// Overrides `options` from the YAML text `yaml` (`file` names it in errors), then validates.
+/// Overrides `options` from the YAML text `yaml` (`file` names it in errors), without validating.
 template <typename Options>
-Status LoadOptionsFromString(const std::string& yaml, const std::string& file, Options& options) {
+Status ApplyOptionsFromString(const std::string& yaml, const std::string& file, Options& options,
+                              YAML::Node* parsed = nullptr) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml);
   } catch (const YAML::Exception& e) {
     return InvalidInput("YAML syntax error: " + e.msg, file, e.mark.line + 1);
   }
+  if (parsed != nullptr) {
+    *parsed = root;
+  }
   if (root.IsNull()) {
-    return options.Validate();
+    return Status::Ok();
   }
   if (!root.IsMap()) {
     return InvalidInput("configuration must be a YAML mapping", file, 1);
   }
   internal::YamlReadVisitor visitor(root, "", file);
   options.Visit(visitor);
-  GRIDSLAM_RETURN_IF_ERROR(visitor.Finish());
-  return options.Validate();
+  return visitor.Finish();
+}
+
+/// Overrides `options` from the YAML text `yaml` (`file` names it in errors), then validates. A
+/// validation error names `file` and the line of the offending key when the text sets it.
+template <typename Options>
+Status LoadOptionsFromString(const std::string& yaml, const std::string& file, Options& options) {
+  YAML::Node root;
+  GRIDSLAM_RETURN_IF_ERROR(ApplyOptionsFromString(yaml, file, options, &root));
+  Status status = options.Validate();
+  if (!status.ok() && status.error().file.empty() && root.IsMap()) {
+    Error error = status.error();
+    error.file = file;
+    error.line = internal::FindValidationLine(root, error.message);
+    return error;
+  }
+  return status;
+}
+
+/// Applies one `section.key=value` override (the value is read as YAML: a scalar or a flow
+/// sequence such as [0.2, 0, 0]), without validating. Errors name the assignment.
+template <typename Options>
+Status ApplyOptionOverride(const std::string& assignment, Options& options) {
+  const std::string where = "--set " + assignment;
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    return InvalidInput("expected KEY=VALUE, e.g. fusion.resolution=0.1", where);
+  }
+  const std::string key = assignment.substr(0, eq);
+  static const std::regex kKey("[A-Za-z0-9_]+(\\.[A-Za-z0-9_]+)*");
+  if (!std::regex_match(key, kKey)) {
+    return InvalidInput("'" + key + "' is not an option name (section.key)", where);
+  }
+  // section.sub.key=value as the YAML mapping {section: {sub: {key: value}}}.
+  std::string yaml = "{";
+  std::string closing = "}";
+  std::size_t start = 0;
+  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', start)) {
+    yaml += key.substr(start, dot - start) + ": {";
+    closing += "}";
+    start = dot + 1;
+  }
+  yaml += key.substr(start) + ": " + assignment.substr(eq + 1) + closing;
+  Status status = ApplyOptionsFromString(yaml, where, options);
+  if (!status.ok()) {
+    Error error = status.error();
+    error.file = where;
+    error.line = 0;
+    return error;
+  }
+  return status;
 }
 
 /// Reads a YAML file into `options` (keys absent from the file keep their values).

@@ -1,5 +1,6 @@
 #include "gridslam/io/trajectory_io.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -37,7 +38,11 @@ Status WriteTrajectory(const std::string& path, const std::vector<StampedPose>& 
   return WriteFileAtomically(path, out);
 }
 
-Status WriteTrajectoryTum(const std::string& path, const std::vector<StampedPose>& poses) {
+Status WriteTrajectoryTum(const std::string& path, const std::vector<StampedPose>& input) {
+  // Ascending timestamps, as TUM readers (evo) require; equal stamps keep their order.
+  std::vector<StampedPose> poses = input;
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.time < b.time; });
   std::string out;
   out.reserve(poses.size() * 120);
   for (const auto& p : poses) {

@@ -1,4 +1,4 @@
-// Trajectory files (FORMATS.md §3): one stamped pose per line, either the project's plain
+// Trajectory files (docs/formats.md §7): one stamped pose per line, either the project's plain
 // "timestamp x y theta" or TUM's "timestamp x y z qx qy qz qw" (z = 0, yaw-only quaternion). The
 // timestamp is printed with 6 decimals exactly as parsed (common/time.hpp), poses at full
 // precision (%.17g) so a write/read round trip is lossless. Which frame a trajectory is in is
@@ -27,7 +27,9 @@ StampedPose TrajectoryEntry(const Frame& frame, const Pose2& T_world_base,
 /// Writes to a temporary file beside `path` and renames it, so no half file is left on failure.
 Status WriteTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
 
-/// Writes TUM lines "timestamp x y z qx qy qz qw" with z = 0 and the yaw quaternion.
+/// Writes TUM lines "timestamp x y z qx qy qz qw" with z = 0 and the yaw quaternion, sorted by
+/// timestamp (stable), as TUM readers such as evo require; the plain format keeps the given order
+/// (a log's own stamps may go backwards, and the benchmark relations are keyed on them).
 Status WriteTrajectoryTum(const std::string& path, const std::vector<StampedPose>& poses);
 
 /// Writes TUM if `path` ends in ".tum", else the plain format.

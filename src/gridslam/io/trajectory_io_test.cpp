@@ -54,7 +54,25 @@ TEST(TrajectoryIo, TumRoundTripAndExtension) {
   EXPECT_EQ(tokens.size(), 8U);
   const auto read = ReadTrajectory(path);
   ASSERT_TRUE(read.ok());
-  ExpectSame(read.value(), SomePoses(), 1e-12);
+  // TUM is written in ascending time (SomePoses' last stamp is the earliest).
+  const std::vector<StampedPose> p = SomePoses();
+  ExpectSame(read.value(), {p[2], p[0], p[1]}, 1e-12);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(TrajectoryIo, TumAscendingPlainInGivenOrder) {
+  const auto dir = testing::MakeTempDir("traj_order");
+  // A log whose stamps go backwards, with two equal stamps (which keep their order).
+  const std::vector<StampedPose> poses = {{*ParseSeconds("10.0"), Pose2(1, 0, 0)},
+                                          {*ParseSeconds("9.5"), Pose2(2, 0, 0)},
+                                          {*ParseSeconds("11.0"), Pose2(3, 0, 0)},
+                                          {*ParseSeconds("9.5"), Pose2(4, 0, 0)}};
+  const std::string plain = (dir / "t.txt").string();
+  const std::string tum = (dir / "t.tum").string();
+  ASSERT_TRUE(WriteTrajectory(plain, poses).ok());
+  ASSERT_TRUE(WriteTrajectoryTum(tum, poses).ok());
+  ExpectSame(ReadTrajectory(plain).value(), poses, 1e-12);
+  ExpectSame(ReadTrajectory(tum).value(), {poses[1], poses[3], poses[0], poses[2]}, 1e-12);
   std::filesystem::remove_all(dir);
 }
 

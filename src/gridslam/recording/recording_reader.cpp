@@ -1,5 +1,7 @@
 #include "gridslam/recording/recording_reader.hpp"
 
+#include <filesystem>
+
 #include <spdlog/spdlog.h>
 
 #include "gridslam/recording/content_sniffer.hpp"
@@ -15,7 +17,27 @@ struct RecordingReader::State {
   io::CarmenStats bag_stats;
   BagAssembly assembly;
   long delivered = 0;
+  long total_bytes = 0;
 };
+
+namespace {
+
+long SizeOf(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    long total = 0;
+    for (const auto& entry : fs::directory_iterator(path, ec)) {
+      const auto size = entry.is_regular_file(ec) ? entry.file_size(ec) : 0;
+      total += ec ? 0 : static_cast<long>(size);
+    }
+    return total;
+  }
+  const auto size = fs::file_size(path, ec);
+  return ec ? 0 : static_cast<long>(size);
+}
+
+}  // namespace
 
 const char* RecordingFormatName(RecordingFormat format) {
   switch (format) {
@@ -41,6 +63,7 @@ Result<RecordingReader> RecordingReader::Open(const std::string& path,
   const SniffResult sniff = SniffPath(path);
   auto state = std::make_unique<State>();
   state->path = path;
+  state->total_bytes = SizeOf(path);
   switch (sniff.kind) {
     case ContentKind::kNotRecording:
       if (sniff.description == "a file that cannot be opened") {
@@ -124,6 +147,20 @@ RecordingFormat RecordingReader::Format() const { return state_->format; }
 
 const io::CarmenStats& RecordingReader::Stats() const {
   return state_->carmen ? state_->carmen->Stats() : state_->bag_stats;
+}
+
+long RecordingReader::TotalBytes() const { return state_->total_bytes; }
+
+long RecordingReader::BytesRead() const {
+  if (state_->carmen) {
+    return state_->carmen->BytesRead();
+  }
+  if (state_->frames.empty()) {
+    return state_->total_bytes;
+  }
+  return static_cast<long>(static_cast<double>(state_->total_bytes) *
+                           static_cast<double>(state_->next) /
+                           static_cast<double>(state_->frames.size()));
 }
 
 const BagAssembly* RecordingReader::Assembly() const {

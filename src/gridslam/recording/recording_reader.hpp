@@ -44,6 +44,10 @@ class RecordingReader {
   /// Counts in the CARMEN reader's terms; for bags: lines = messages, odometry = odometry
   /// samples, scans_without_odometry = scans clamped outside the odometry's time span.
   [[nodiscard]] const io::CarmenStats& Stats() const;
+  /// Size of the recording [bytes] (a rosbag2 folder: its .db3 files) and how much of it has
+  /// been delivered (CARMEN: bytes read; bags: the share of frames handed out), for progress.
+  [[nodiscard]] long TotalBytes() const;
+  [[nodiscard]] long BytesRead() const;
   /// What the bag assembly chose (nullptr for CARMEN logs).
   [[nodiscard]] const BagAssembly* Assembly() const;
 

@@ -8,11 +8,19 @@
 
 #include "gridslam/common/angles.hpp"
 #include "gridslam/common/check.hpp"
+#include "gridslam/scan_matching/correlative_search.hpp"
 
 namespace gridslam::scan_matching {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A refinement from another start replaces the current best only when it scores this much
+// better (fraction of points on the map), as in ScanMatcher::Match.
+constexpr double kScoreMargin = 0.05;
+// Two refinements this close converged to the same optimum (a few cells, half a degree).
+constexpr double kSamePoseXy = 0.1;
+constexpr double kSamePoseTheta = 0.01;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -73,6 +81,14 @@ Status FrontEndOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(
       Require(adaptive_window > 0 && adaptive_min_scale > 0.0 && adaptive_min_scale <= 1.0,
               "front_end.adaptive_window > 0, 0 < adaptive_min_scale <= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(odometry_check.Valid(),
+                                   "front_end.odometry_check: window > 0, sigmas > 0, floors > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(
+      wide_search.linear_window >= 0.0 && wide_search.linear_step >= 1 &&
+          wide_search.angular_window >= 0.0 && wide_search.angular_step > 0.0 &&
+          wide_search.sigma > 0.0 && wide_search.max_points >= 3 && wide_search.candidates >= 1,
+      "front_end.wide_search: windows >= 0, steps > 0, sigma > 0, max_points >= 3, "
+      "candidates >= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(max_correction_xy > 0.0 && max_correction_theta > 0.0,
                                    "front_end max corrections > 0"));
   return Status::Ok();
@@ -83,7 +99,8 @@ FrontEnd::FrontEnd(const FrontEndOptions& options)
       matcher_(options.matcher),
       field_(options.matcher.max_correspondence_distance),
       keymaps_(options.keymap),
-      odometry_noise_(options.adaptive_window, options.adaptive_min_scale) {
+      odometry_noise_(options.adaptive_window, options.adaptive_min_scale),
+      motion_check_(options.odometry_check) {
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
 }
 
@@ -100,12 +117,15 @@ FrontEnd::PriorSigmas FrontEnd::DefaultPriorSigmas(const Pose2& odometry_increme
 }
 
 Eigen::Matrix3d FrontEnd::PriorInformation(const PriorSigmas& defaults,
-                                           const Pose2& T_odom_base_predicted) const {
-  // The yaw default scaled to the odometry at hand; rotated into the odometry frame.
+                                           const Pose2& T_odom_base_predicted,
+                                           bool odometry_trusted) const {
+  // The yaw default scaled to the odometry at hand (not to a constant-velocity guess); rotated
+  // into the odometry frame.
   const double forward = defaults.forward;
   const double lateral = defaults.lateral;
   const double sigma_theta =
-      (options_.adaptive_odometry ? odometry_noise_.RotationScale() : 1.0) * defaults.theta;
+      (options_.adaptive_odometry && odometry_trusted ? odometry_noise_.RotationScale() : 1.0) *
+      defaults.theta;
   const Eigen::Matrix2d R = T_odom_base_predicted.Rotation();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   information.topLeftCorner<2, 2>() =
@@ -122,6 +142,60 @@ bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
          std::abs(ToSeconds(frame.corrected_time - last_insert_time_)) >= options_.insert_period;
 }
 
+MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
+                                                  const MotionPrediction& prediction,
+                                                  const Eigen::Matrix3d& prior_information,
+                                                  FrontEndStep* step) {
+  const Pose2& centre = prediction.constant_velocity;
+  MatchResult best = matcher_.Match(*window_, field_, points, centre, prior_information);
+  if (prediction.check == OdometryCheck::kDoubtful) {
+    // The odometry may still be right (a real manoeuvre, or a false alarm): matched with its
+    // own prior, it wins when it scores clearly better, or when both converge to the same pose.
+    // Only when the scan tells two different poses apart no better than that does the
+    // plausible constant-velocity prediction win.
+    const PriorSigmas sigmas = DefaultPriorSigmas(prediction.odometry_increment);
+    const MatchResult odometry =
+        matcher_.Match(*window_, field_, points, prediction.odometry,
+                       PriorInformation(sigmas, prediction.odometry, true));
+    const Pose2 difference = Between(best.T_odom_base, odometry.T_odom_base);
+    const bool same = difference.translation().norm() < kSamePoseXy &&
+                      std::abs(difference.theta()) < kSamePoseTheta;
+    if (odometry.ok && (!best.ok || same || odometry.score > best.score + kScoreMargin)) {
+      best = odometry;
+    } else {
+      ++stats_.constant_velocity_wins;
+    }
+  }
+  const double good = options_.matcher.good_score;
+  if (options_.wide_search.enabled && (!best.ok || best.score < good)) {
+    const WideSearchOptions& wide = options_.wide_search;
+    SearchLattice lattice;
+    lattice.linear_window = wide.linear_window;
+    lattice.linear_step = wide.linear_step;
+    lattice.angular_window = wide.angular_window;
+    lattice.angular_step = wide.angular_step;
+    lattice.sigma = wide.sigma;
+    lattice.max_points = static_cast<std::size_t>(wide.max_points);
+    const double res = field_.Limits().Resolution();
+    const std::vector<SearchResult> starts =
+        CorrelativeSearchTop(field_, points, centre, lattice, wide.candidates,
+                             2.0 * wide.linear_step * res, 2.0 * wide.angular_step);
+    step->wide_search = true;
+    ++stats_.wide_searches;
+    for (const SearchResult& start : starts) {
+      // The prior moves with the start: the constant-velocity guess is no better than the
+      // lattice pose the scan prefers.
+      MatchResult refined = matcher_.Refine(*window_, field_, points, start.T_odom_base,
+                                            start.T_odom_base, prior_information);
+      if (refined.ok && (!best.ok || refined.score > best.score + kScoreMargin)) {
+        refined.searched = true;
+        best = refined;
+      }
+    }
+  }
+  return best;
+}
+
 FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   FrontEndStep step;
   step.time = frame.time;
@@ -132,17 +206,26 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
                         options_.local_map.grazing_normals);
   stats_.seconds_preprocess += SecondsSince(start);
 
-  Pose2 pose = frame.T_odom_base;
+  const std::optional<Pose2> odometry =
+      frame.has_odometry ? std::optional<Pose2>(frame.T_odom_base) : std::nullopt;
+  Pose2 pose = frame.has_odometry ? frame.T_odom_base : Pose2();
   const bool first = window_ == nullptr;
+  MotionPrediction prediction;
   if (first) {
     window_ = std::make_unique<RollingWindow>(options_.local_map, pose.translation(),
                                               options_.matcher.residual == "point_to_line");
     step.status = FrameStatus::kFirst;
+    motion_check_.Reset(frame.corrected_time, pose, pose);
   } else {
-    const Pose2 increment = Between(last_odometry_, frame.T_odom_base);
-    const Pose2 predicted = last_estimate_ * increment;
-    const PriorSigmas defaults = DefaultPriorSigmas(increment);
-    const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted);
+    prediction = motion_check_.Predict(frame.corrected_time, odometry);
+    step.odometry = prediction.check;
+    // The raw-odometry baseline (match off) follows the odometry, glitches included.
+    const bool trusted = prediction.check == OdometryCheck::kConsistent || !options_.match;
+    stats_.odometry_doubtful += prediction.check == OdometryCheck::kDoubtful ? 1 : 0;
+    stats_.odometry_missing += prediction.check == OdometryCheck::kMissing ? 1 : 0;
+    const Pose2 predicted = trusted ? prediction.odometry : prediction.constant_velocity;
+    const PriorSigmas defaults = DefaultPriorSigmas(Between(last_estimate_, predicted));
+    const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted, trusted);
     pose = predicted;
     step.covariance = prior_information.inverse();
     if (!options_.match) {
@@ -159,23 +242,37 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       window_->ClearChanges();
       stats_.seconds_field += SecondsSince(start);
       start = Clock::now();
-      step.match = matcher_.Match(*window_, field_, points, predicted, prior_information);
+      if (trusted) {
+        step.match = matcher_.Match(*window_, field_, points, predicted, prior_information);
+      } else {
+        step.match = MatchWithoutTrustedOdometry(points, prediction, prior_information, &step);
+      }
       stats_.seconds_match += SecondsSince(start);
       stats_.searches += step.match.searched ? 1 : 0;
       const Pose2 correction = Between(predicted, step.match.T_odom_base);
-      if (step.match.ok && correction.translation().norm() <= options_.max_correction_xy &&
-          std::abs(correction.theta()) <= options_.max_correction_theta) {
+      // Without trusted odometry the match may move the guess as far as the wide search looks.
+      const double max_xy = trusted ? options_.max_correction_xy
+                                    : std::max(options_.max_correction_xy,
+                                               std::sqrt(2.0) * options_.wide_search.linear_window);
+      const double max_theta =
+          trusted ? options_.max_correction_theta
+                  : std::max(options_.max_correction_theta, options_.wide_search.angular_window);
+      if (step.match.ok && correction.translation().norm() <= max_xy &&
+          std::abs(correction.theta()) <= max_theta) {
         pose = step.match.T_odom_base;
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
-        odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
-                            defaults.theta);
+        if (trusted) {
+          odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
+                              defaults.theta);
+        }
       } else {
         step.status = FrameStatus::kFallbackRejected;
         ++stats_.fallback_rejected;
       }
     }
+    motion_check_.Update(frame.corrected_time, odometry, pose, prediction);
   }
   step.T_odom_base = pose;
 
@@ -198,7 +295,6 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   stats_.field_rebuilds = field_.NumRebuilds();
   stats_.field_tile_updates = field_.NumTileUpdates();
 
-  last_odometry_ = frame.T_odom_base;
   last_estimate_ = pose;
   return step;
 }

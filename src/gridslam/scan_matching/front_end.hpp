@@ -18,6 +18,7 @@
 #include "gridslam/scan/laser_scan.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
+#include "gridslam/scan_matching/motion_check.hpp"
 #include "gridslam/scan_matching/odometry_noise.hpp"
 #include "gridslam/scan_matching/scan_matcher.hpp"
 
@@ -41,6 +42,8 @@ struct FrontEndStep {
   Pose2 T_odom_base;  ///< Estimated robot pose in the front end's (odometry) frame.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< Of the match, if matched.
   FrameStatus status = FrameStatus::kFirst;
+  OdometryCheck odometry = OdometryCheck::kConsistent;  ///< Verdict on the odometry increment.
+  bool wide_search = false;               ///< The wide search ran (doubtful or missing odometry).
   MatchResult match;                      ///< Details of the match (if one was attempted).
   bool inserted = false;                  ///< The scan was inserted into the local map.
   std::optional<keymap::KeyMap> key_map;  ///< A key map finished after this frame.
@@ -54,6 +57,10 @@ struct FrontEndStats {
   long fallback_empty_map = 0;
   long fallback_rejected = 0;
   long searches = 0;
+  long odometry_doubtful = 0;  ///< Increments the motion check found implausible.
+  long odometry_missing = 0;   ///< Frames without odometry.
+  long wide_searches = 0;
+  long constant_velocity_wins = 0;  ///< Doubtful frames matched from the constant velocity.
   long insertions = 0;
   long key_maps = 0;
   long field_rebuilds = 0;
@@ -94,8 +101,16 @@ class FrontEnd {
   [[nodiscard]] PriorSigmas DefaultPriorSigmas(const Pose2& odometry_increment) const;
   /// The prior's information: the defaults scaled by the odometry noise estimate.
   [[nodiscard]] Eigen::Matrix3d PriorInformation(const PriorSigmas& defaults,
-                                                 const Pose2& T_odom_base_predicted) const;
+                                                 const Pose2& T_odom_base_predicted,
+                                                 bool odometry_trusted) const;
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
+  /// Matches a frame whose odometry is doubtful or missing: from the constant-velocity
+  /// prediction, from the odometry's (if any), and from the wide search's maxima when neither
+  /// explains the scan; the best-scoring refinement wins.
+  [[nodiscard]] MatchResult MatchWithoutTrustedOdometry(const ScanPoints& points,
+                                                        const MotionPrediction& prediction,
+                                                        const Eigen::Matrix3d& prior_information,
+                                                        FrontEndStep* step);
 
   FrontEndOptions options_;
   ScanMatcher matcher_;
@@ -103,8 +118,8 @@ class FrontEnd {
   MatchingField field_;
   keymap::KeyMapBuilder keymaps_;
   OdometryNoiseEstimate odometry_noise_;
+  MotionCheck motion_check_;
   FrontEndStats stats_;
-  Pose2 last_odometry_;     ///< Odometry pose of the previous frame.
   Pose2 last_estimate_;     ///< Estimated pose of the previous frame.
   Pose2 last_insert_pose_;  ///< Pose of the last inserted scan.
   Time last_insert_time_;

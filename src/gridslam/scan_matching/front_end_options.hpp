@@ -5,9 +5,37 @@
 #include "gridslam/common/options.hpp"
 #include "gridslam/grid/local_map_options.hpp"
 #include "gridslam/keymap/key_map_builder.hpp"
+#include "gridslam/scan_matching/motion_check.hpp"
 #include "gridslam/scan_matching/scan_matcher_options.hpp"
 
 namespace gridslam::scan_matching {
+
+/// The wide search run when the odometry is doubtful or missing and neither prediction explains
+/// the scan (correlative_search.hpp): a coarse lattice of +-linear_window, +-angular_window around
+/// the constant-velocity prediction; the best `candidates` distinct lattice poses are refined and
+/// the best-scoring refinement wins.
+struct WideSearchOptions {
+  bool enabled = true;
+  double linear_window = 1.0;      ///< Half-width in x and y [m].
+  int linear_step = 3;             ///< Lattice step [cells] (within Gauss-Newton's basin).
+  double angular_window = 1.5708;  ///< Half-width in yaw [rad].
+  double angular_step = 0.035;     ///< Lattice step [rad].
+  double sigma = 0.15;             ///< Width of a point's Gaussian score [m].
+  int max_points = 90;             ///< Points scored per lattice pose [-].
+  int candidates = 5;              ///< Distinct lattice maxima refined [-].
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled, "Search widely when the odometry is doubtful or missing");
+    v("linear_window", linear_window, "Half-width of the wide search in x and y [m]");
+    v("linear_step", linear_step, "Translation step of its lattice [cells]");
+    v("angular_window", angular_window, "Half-width of the wide search in yaw [rad]");
+    v("angular_step", angular_step, "Yaw step of its lattice [rad]");
+    v("sigma", sigma, "Width of a point's Gaussian score in the wide search [m]");
+    v("max_points", max_points, "Points scored per lattice pose [-]");
+    v("candidates", candidates, "Distinct lattice maxima refined by Gauss-Newton [-]");
+  }
+};
 
 struct FrontEndOptions {
   bool match = true;  ///< false: poses are raw odometry (the baseline), the map is still built.
@@ -33,6 +61,9 @@ struct FrontEndOptions {
   /// the scale cannot fall below what odometry and matcher disagree by. 0.1 let fr-clinic's
   /// near-exact odometry yaw random-walk by 0.005 rad per scan (docs/front_end.md) [-].
   double adaptive_min_scale = 0.02;
+  /// Plausibility of each odometry increment against the recent motion (motion_check.hpp).
+  MotionCheckOptions odometry_check;
+  WideSearchOptions wide_search;
   double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
   double max_correction_theta = 0.35;  ///< [rad]
 
@@ -56,6 +87,10 @@ struct FrontEndOptions {
       "Scale the yaw prior by the recent agreement of odometry and scan matching");
     v("adaptive_window", adaptive_window, "... over this many matched scans [-]");
     v("adaptive_min_scale", adaptive_min_scale, "... never below this fraction of the yaw std [-]");
+    v.Section("odometry_check", odometry_check,
+              "Plausibility of each odometry increment against the recent motion");
+    v.Section("wide_search", wide_search,
+              "Wide correlative search when the odometry is doubtful or missing");
     v("max_correction_xy", max_correction_xy,
       "Matches moving the prediction farther are rejected (odometry fallback) [m]");
     v("max_correction_theta", max_correction_theta, "... or turning it more [rad]");

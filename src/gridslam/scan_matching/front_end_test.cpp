@@ -135,6 +135,71 @@ TEST(FrontEnd, BeatsOdometryAndHandsOutEveryScanInOneKeyMap) {
   EXPECT_EQ(index, frames.size());
 }
 
+// The drive's end pose relative to its start, estimated against the truth.
+double EndError(const std::vector<Pose2>& truth, const std::vector<Pose2>& estimate) {
+  return Between(Between(truth.front(), truth.back()), Between(estimate.front(), estimate.back()))
+      .translation()
+      .norm();
+}
+
+// Odometry that jumps in one step (a glitch) and carries on from the jumped pose.
+void InjectGlitch(std::vector<Frame>* frames, std::size_t at, const Pose2& jump) {
+  const Pose2 T_jumped_odom =
+      (*frames)[at].T_odom_base * jump * (*frames)[at].T_odom_base.Inverse();
+  for (std::size_t k = at; k < frames->size(); ++k) {
+    (*frames)[k].T_odom_base = T_jumped_odom * (*frames)[k].T_odom_base;
+  }
+}
+
+TEST(FrontEnd, OdometryGlitchesAreCaughtAndMatchedAway) {
+  const std::vector<Pose2> truth = DriveThroughTheWorld();
+  std::vector<Frame> frames = MakeFrames(truth);
+  // Yaw jumps of 30-80 degrees and a 0.6 m jump, while the robot drives or turns smoothly.
+  InjectGlitch(&frames, 120, Pose2(0.0, 0.0, DegToRad(45.0)));
+  InjectGlitch(&frames, 260, Pose2(0.0, 0.0, DegToRad(-80.0)));
+  InjectGlitch(&frames, 340, Pose2(0.6, 0.0, 0.0));
+  InjectGlitch(&frames, 420, Pose2(0.0, 0.0, DegToRad(30.0)));
+  FrontEndOptions options;
+  FrontEnd front_end(options);
+  std::vector<Pose2> estimate;
+  std::vector<Pose2> odometry;
+  for (const Frame& frame : frames) {
+    estimate.push_back(front_end.AddFrame(frame).T_odom_base);
+    odometry.push_back(frame.T_odom_base);
+  }
+  const FrontEndStats& stats = front_end.Stats();
+  EXPECT_GE(stats.odometry_doubtful, 4);
+  // A few false alarms at most: the drive turns in place and starts again at every waypoint.
+  EXPECT_LE(stats.odometry_doubtful, 20);
+  EXPECT_EQ(stats.fallback_rejected, 0);
+  EXPECT_GT(EndError(truth, odometry), 2.0);
+  EXPECT_LT(EndError(truth, estimate), 0.15);
+  const auto [estimate_xy, estimate_theta] = RelativeError(truth, estimate, 20);
+  EXPECT_LT(estimate_xy, 0.02);
+  EXPECT_LT(estimate_theta, DegToRad(0.5));
+}
+
+TEST(FrontEnd, WithoutOdometryTheScansAloneCarryTheEstimate) {
+  const std::vector<Pose2> truth = DriveThroughTheWorld();
+  std::vector<Frame> frames = MakeFrames(truth);
+  for (Frame& frame : frames) {
+    frame.has_odometry = false;
+    frame.T_odom_base = Pose2();
+  }
+  FrontEnd front_end(FrontEndOptions{});
+  std::vector<Pose2> estimate;
+  for (const Frame& frame : frames) {
+    estimate.push_back(front_end.AddFrame(frame).T_odom_base);
+  }
+  const FrontEndStats& stats = front_end.Stats();
+  EXPECT_EQ(stats.odometry_missing, static_cast<long>(frames.size()) - 1);
+  EXPECT_EQ(stats.matched, static_cast<long>(frames.size()) - 1);
+  EXPECT_LT(EndError(truth, estimate), 0.15);
+  const auto [estimate_xy, estimate_theta] = RelativeError(truth, estimate, 20);
+  EXPECT_LT(estimate_xy, 0.02);
+  EXPECT_LT(estimate_theta, DegToRad(0.5));
+}
+
 TEST(FrontEnd, ScansWithoutReturnsFallBackToOdometryAndMarkNothing) {
   std::vector<Pose2> truth = DriveThroughTheWorld();
   truth.resize(60);

@@ -40,6 +40,10 @@ Status GzLineReader::Open(const std::string& path) {
   return Status::Ok();
 }
 
+long GzLineReader::FileOffset() const {
+  return file_ == nullptr ? 0 : static_cast<long>(gzoffset(static_cast<gzFile>(file_)));
+}
+
 bool GzLineReader::ReadLine(std::string& line, Status& status) {
   line.clear();
   if (file_ == nullptr) {

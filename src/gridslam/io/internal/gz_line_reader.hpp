@@ -22,6 +22,8 @@ class GzLineReader {
   /// Reads the next line without its line ending into `line`; false at the end of the file.
   /// A read error is reported through `status`.
   bool ReadLine(std::string& line, Status& status);
+  /// Bytes of the file (compressed bytes for a gzip file) consumed so far, for progress reports.
+  [[nodiscard]] long FileOffset() const;
 
  private:
   void Close();
