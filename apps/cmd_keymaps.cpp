@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
-#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/keymap/key_map.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
 #include "command.hpp"
@@ -80,14 +80,14 @@ int RunKeymaps(const KeymapsArgs& args, AppContext& context) {
   if (!(args.distance_clamp > 0.0)) {
     return ReportError(InvalidInput("--distance-clamp must be > 0"));
   }
+  auto reader = recording::RecordingReader::Open(args.log, context.Recording());
+  if (!reader.ok()) {
+    return ReportError(reader.error());
+  }
   std::error_code ec;
   std::filesystem::create_directories(args.output, ec);
   if (ec) {
     return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
-  }
-  auto reader = io::CarmenReader::Open(args.log, context.options.log);
-  if (!reader.ok()) {
-    return ReportError(reader.error());
   }
   const std::filesystem::path dir(args.output);
   std::ofstream index(dir / "keymaps.txt");
@@ -126,7 +126,8 @@ int RunKeymaps(const KeymapsArgs& args, AppContext& context) {
 
 RunFunction SetupKeymaps(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<KeymapsArgs>();
-  sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
+  sub.add_option("LOG", args->log,
+                 "Recording: CARMEN log (optionally gzip-compressed) or bag (.bag, .mcap, rosbag2)")
       ->required();
   sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_option("--distance-clamp", args->distance_clamp,

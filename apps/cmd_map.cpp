@@ -20,6 +20,7 @@
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/frame_interleaver.hpp"
 #include "gridslam/pipeline/mapper.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 
 #include "app_align_map.hpp"
 #include "app_map_output.hpp"
@@ -192,18 +193,13 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
 int RunMap(const MapArgs& args, AppContext& context) {
   const auto start = Clock::now();
   const int num_robots = static_cast<int>(args.logs.size());
-  std::vector<io::CarmenReader> readers;
+  std::vector<recording::RecordingReader> readers;
   for (const std::string& log : args.logs) {
-    auto reader = io::CarmenReader::Open(log, context.options.log);
+    auto reader = recording::RecordingReader::Open(log, context.Recording());
     if (!reader.ok()) {
       return ReportError(reader.error());
     }
     readers.push_back(std::move(reader).value());
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
   }
 
   pipeline::Mapper mapper(context.options.Mapper(), num_robots);
@@ -214,6 +210,12 @@ int RunMap(const MapArgs& args, AppContext& context) {
   for (std::size_t r = 0; r < readers.size(); ++r) {
     robots[r].log = args.logs[r];
     sources.push_back([&reader = readers[r]] { return reader.Next(); });
+  }
+  // Created only once every recording has delivered a scan: a refused input leaves nothing.
+  std::error_code ec;
+  std::filesystem::create_directories(args.output, ec);
+  if (ec) {
+    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
   }
   // --snapshots: the map every S seconds of log time, written aside and moved into place at
   // the end (no half-written output on an error).
@@ -232,8 +234,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   const bool progress = isatty(fileno(stderr)) != 0;
   long processed = 0;
   double total_bytes = 0.0;
-  for (const std::string& log : args.logs) {
-    total_bytes += static_cast<double>(std::filesystem::file_size(log, ec));
+  for (const recording::RecordingReader& reader : readers) {
+    total_bytes += static_cast<double>(reader.TotalBytes());
   }
   auto last_progress = Clock::now();
   std::optional<Error> snapshot_error;
@@ -257,7 +259,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
             (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
           last_progress = Clock::now();
           double read = 0.0;
-          for (const io::CarmenReader& reader : readers) {
+          for (const recording::RecordingReader& reader : readers) {
             read += static_cast<double>(reader.BytesRead());
           }
           PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
@@ -357,7 +359,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
 
 RunFunction SetupMap(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<MapArgs>();
-  sub.add_option("LOG", args->logs, "CARMEN log(s), one per robot (optionally gzip-compressed)")
+  sub.add_option(
+         "LOG", args->logs,
+         "Recording(s), one per robot: CARMEN log (optionally gzip-compressed), ROS 1 .bag, "
+         "MCAP .mcap, rosbag2 folder or .db3")
       ->required();
   sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_flag("--align-map", args->align_map,

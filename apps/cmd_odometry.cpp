@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/trajectory_io.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 
 #include "command.hpp"
 
@@ -28,7 +28,7 @@ int RunOdometry(const OdometryArgs& args, AppContext& context) {
   if (frame != "base" && frame != "laser") {
     return ReportError(InvalidInput("--frame must be 'base' or 'laser', not '" + frame + "'"));
   }
-  auto reader = io::CarmenReader::Open(args.log, options);
+  auto reader = recording::RecordingReader::Open(args.log, {options, context.bag});
   if (!reader.ok()) {
     return ReportError(reader.error());
   }
@@ -63,7 +63,8 @@ int RunOdometry(const OdometryArgs& args, AppContext& context) {
 
 RunFunction SetupOdometry(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<OdometryArgs>();
-  sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
+  sub.add_option("LOG", args->log,
+                 "Recording: CARMEN log (optionally gzip-compressed) or bag (.bag, .mcap, rosbag2)")
       ->required();
   sub.add_option("-o,--output", args->output,
                  "Trajectory file (.tum = TUM, else timestamp x y "

@@ -16,12 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include "gridslam/io/atomic_file.hpp"
-#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/relations_io.hpp"
 #include "gridslam/io/simulation_io.hpp"
 #include "gridslam/multi_robot/log_split.hpp"
 #include "gridslam/multi_robot/piece_log.hpp"
 #include "gridslam/multi_robot/relation_split.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 
 #include "command.hpp"
 
@@ -72,7 +72,7 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
   }
   // 1. Read and check everything.
   io::CarmenStats log_stats;
-  auto frames = io::ReadCarmenLog(args.log, context.options.log, &log_stats);
+  auto frames = recording::ReadRecording(args.log, context.Recording(), &log_stats);
   if (!frames.ok()) {
     return ReportError(frames.error());
   }
@@ -196,7 +196,9 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
 
 RunFunction SetupSplit(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<SplitArgs>();
-  sub.add_option("LOG", args->log, "CARMEN log (optionally gzip-compressed)")->required();
+  sub.add_option("LOG", args->log,
+                 "Recording: CARMEN log (optionally gzip) or bag (.bag, .mcap, rosbag2)")
+      ->required();
   sub.add_option("-n,--pieces", args->pieces, "Number of robots (consecutive pieces)")->required();
   sub.add_option("--relations", args->relations,
                  "Benchmark relations of LOG, split into within/between.relations");

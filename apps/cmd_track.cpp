@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/io/trajectory_io.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
 #include "command.hpp"
@@ -68,16 +68,16 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
   if (const Status s = options.Validate(); !s.ok()) {
     return ReportError(s.error());
   }
+  const auto start = Clock::now();
+  io::CarmenStats log_stats;
+  auto frames = recording::ReadRecording(args.log, context.Recording(), &log_stats);
+  if (!frames.ok()) {
+    return ReportError(frames.error());
+  }
   std::error_code ec;
   std::filesystem::create_directories(args.output, ec);
   if (ec) {
     return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
-  }
-  const auto start = Clock::now();
-  io::CarmenStats log_stats;
-  auto frames = io::ReadCarmenLog(args.log, context.options.log, &log_stats);
-  if (!frames.ok()) {
-    return ReportError(frames.error());
   }
   if (frames.value().empty()) {
     return ReportError(InvalidInput("the log has no laser scans", args.log));
@@ -155,7 +155,8 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
 
 RunFunction SetupTrack(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<TrackArgs>();
-  sub.add_option("LOG", args->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
+  sub.add_option("LOG", args->log,
+                 "Recording: CARMEN log (optionally gzip-compressed) or bag (.bag, .mcap, rosbag2)")
       ->required();
   sub.add_option("-o,--output", args->output, "Output folder")->required()->check(OutputFolder());
   sub.add_flag("--no-match", args->no_match,

@@ -14,13 +14,18 @@
 
 #include "gridslam/common/result.hpp"
 #include "gridslam/pipeline/slam_options.hpp"
+#include "gridslam/recording/recording_reader.hpp"
 
 namespace gridslam::app {
 
 /// What every subcommand gets when it runs.
 struct AppContext {
-  SlamOptions options;      ///< Defaults, overridden by --config and command-line flags.
-  std::string config_path;  ///< The --config file, if any.
+  SlamOptions options;        ///< Defaults, overridden by --config and command-line flags.
+  std::string config_path;    ///< The --config file, if any.
+  recording::BagOptions bag;  ///< --scan-topic, --odom-topic, --odom-frame, --base-frame.
+
+  /// How recordings (CARMEN logs and bags) are read.
+  [[nodiscard]] recording::RecordingOptions Recording() const { return {options.log, bag}; }
 };
 
 /// Exit codes (DESIGN.md §2).

@@ -59,6 +59,14 @@ void AddCommonOptions(CLI::App& app, AppContext& context, std::string& log_level
   app.add_option("--rate", common.rate,
                  "Scan rate [Hz] for logs without timestamps (times are synthesized from message "
                  "order; log.timestamp_rate)");
+  app.add_option("--scan-topic", context.bag.scan_topic,
+                 "Bags: sensor_msgs/LaserScan topic (default: the only one)");
+  app.add_option("--odom-topic", context.bag.odom_topic,
+                 "Bags: nav_msgs/Odometry topic (default: the only one, else TF odom->base_link)");
+  app.add_option("--odom-frame", context.bag.odom_frame,
+                 "Bags: odometry from TF with this odometry frame (default odom)");
+  app.add_option("--base-frame", context.bag.base_frame,
+                 "Bags: robot frame (default: the odometry's child frame, else base_link)");
 }
 
 /// Levenshtein distance, for suggesting the command a typo meant.
@@ -83,7 +91,9 @@ std::size_t EditDistance(std::string_view a, std::string_view b) {
 std::string FirstWord(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg(argv[i]);
-    if (arg == "--config" || arg == "--set" || arg == "--log-level" || arg == "--rate") {
+    if (arg == "--config" || arg == "--set" || arg == "--log-level" || arg == "--rate" ||
+        arg == "--scan-topic" || arg == "--odom-topic" || arg == "--odom-frame" ||
+        arg == "--base-frame") {
       ++i;  // its value
     } else if (arg.empty() || arg[0] != '-') {
       return std::string(arg);
