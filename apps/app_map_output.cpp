@@ -59,10 +59,11 @@ Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
       cv::circle(image, pixel(v.T_map_v.translation()), 2, cv::Scalar(120, 60, 0), -1);
     }
   }
-  if (!cv::imwrite(path, image)) {
-    return RuntimeError("cannot write " + path);
+  std::vector<std::uint8_t> png;
+  if (!cv::imencode(".png", image, png)) {
+    return RuntimeError("cannot encode " + path);
   }
-  return Status::Ok();
+  return io::WriteFileAtomically(path, std::string(png.begin(), png.end()));
 }
 
 }  // namespace

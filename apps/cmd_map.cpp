@@ -15,6 +15,7 @@
 #include "gridslam/pipeline/mapper.hpp"
 
 #include "app_map_output.hpp"
+#include "app_output_dir.hpp"
 #include "command.hpp"
 #include <unistd.h>
 
@@ -68,10 +69,9 @@ int RunMap(const MapArgs& args, AppContext& context) {
     }
     readers.push_back(std::move(reader).value());
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
 
   pipeline::Mapper mapper(context.options, num_robots);
@@ -129,6 +129,11 @@ int RunMap(const MapArgs& args, AppContext& context) {
   if (progress) {
     std::fprintf(stderr, "\n");
   }
+  for (std::size_t r = 0; r < readers.size(); ++r) {
+    if (robots[r].scans == 0) {  // nothing to map: say so, leave any earlier result alone
+      return ReportError(io::NoScansError(args.logs[r], readers[r].Stats()));
+    }
+  }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -160,9 +165,12 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
   const std::string config =
       "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
-  if (const Status s = WriteMapOutputs(args.output, result, robots,
+  if (const Status s = WriteMapOutputs(output.value()->path(), result, robots,
                                        context.options.eval.trajectory_frame, config, report);
       !s.ok()) {
+    return ReportError(s.error());
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
     return ReportError(s.error());
   }
   const pipeline::MapperStats& s = result.stats;
