@@ -275,7 +275,9 @@ void Mapper::Impl::CatchUp(const std::vector<bool>& moved, std::vector<PendingJo
       }
       std::sort(candidates.begin(), candidates.end());
       std::vector<int> chosen;
-      for (const auto& [d, id] : candidates) {
+      for (const auto& candidate : candidates) {
+        // Not a structured binding: clang 14 cannot capture one in the lambda below.
+        const int id = candidate.second;
         if (static_cast<int>(chosen.size()) >= lc.max_candidates) {
           break;
         }
