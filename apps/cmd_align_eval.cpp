@@ -18,6 +18,7 @@
 
 #include "gridslam/benchmark/align_eval.hpp"
 #include "gridslam/common/angles.hpp"
+#include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/relations_io.hpp"
 #include "gridslam/io/trajectory_io.hpp"
@@ -151,14 +152,12 @@ std::string Token(std::string text) {
 }
 
 Status WritePairs(const std::string& path, const benchmark::AlignEvalReport& r) {
-  std::ofstream out(path);
-  if (!out) {
-    return RuntimeError("cannot write " + path);
-  }
-  out << "# kind key_a key_b t1 t2 centre_distance accepted reason correct error_m error_deg "
-         "error_unrefined_m error_unrefined_deg features_a features_b matches inliers agreement "
-         "contradiction ms_align relations truth_spread_m truth_spread_deg truth_checks "
-         "truth_error_m truth_error_deg\n";
+  std::string out;  // written atomically at the end (no half file on a full disk)
+  out +=
+      "# kind key_a key_b t1 t2 centre_distance accepted reason correct error_m error_deg "
+      "error_unrefined_m error_unrefined_deg features_a features_b matches inliers agreement "
+      "contradiction ms_align relations truth_spread_m truth_spread_deg truth_checks "
+      "truth_error_m truth_error_deg\n";
   char line[640];
   for (const auto* set : {&r.positives, &r.negatives}) {
     for (const benchmark::PairOutcome& o : *set) {
@@ -175,10 +174,10 @@ Status WritePairs(const std::string& path, const benchmark::AlignEvalReport& r) 
                     1e3 * o.seconds_align, o.pair.relations, o.pair.truth_spread_translation,
                     RadToDeg(o.pair.truth_spread_rotation), o.pair.truth_checks,
                     o.pair.truth_error_translation, RadToDeg(o.pair.truth_error_rotation));
-      out << line;
+      out += line;
     }
   }
-  return out ? Status::Ok() : Status(RuntimeError("cannot write " + path));
+  return io::WriteFileAtomically(path, out);
 }
 
 int RunAlignEval(const AlignEvalArgs& args, AppContext& context) {
@@ -208,9 +207,13 @@ int RunAlignEval(const AlignEvalArgs& args, AppContext& context) {
                                     eval,
                                     options.eval.trajectory_frame == "laser"};
 
-  auto frames = io::ReadCarmenLog(args.log, options.log);
+  io::CarmenStats log_stats;
+  auto frames = io::ReadCarmenLog(args.log, options.log, &log_stats);
   if (!frames.ok()) {
     return ReportError(frames.error());
+  }
+  if (frames.value().empty()) {
+    return ReportError(io::NoScansError(args.log, log_stats));
   }
   auto relations = io::ReadRelations(args.relations);
   if (!relations.ok()) {

@@ -7,15 +7,19 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+#include "gridslam/io/atomic_file.hpp"
+#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
+#include "app_output_dir.hpp"
 #include "command.hpp"
 
 namespace gridslam::app {
@@ -54,20 +58,28 @@ cv::Mat DistanceImage(const Grid2D<std::uint8_t>& obstacles, double clamp) {
 
 Status WriteKeyMap(const std::filesystem::path& dir, const keymap::KeyMap& key,
                    const scan_matching::FrontEndOptions& options, double clamp,
-                   std::ofstream& index) {
+                   std::string& index) {
   char name[32];
   std::snprintf(name, sizeof(name), "keymap_%04d", key.id);
   const double occupied = options.local_map.occupied_probability;
   const OccupancyImage occupancy = keymap::ToOccupancyImage(key.log_odds, occupied, 0.5);
   const std::string grid_path = (dir / (std::string(name) + ".png")).string();
   const std::string distance_path = (dir / (std::string(name) + "_distance.png")).string();
-  if (!cv::imwrite(grid_path, OccupancyToImage(occupancy)) ||
-      !cv::imwrite(distance_path,
-                   DistanceImage(keymap::ObstacleMask(key.log_odds, occupied), clamp))) {
-    return RuntimeError("cannot write " + grid_path);
+  // Encoded in memory and written atomically, so write errors (a full disk) are detected.
+  for (const auto& [path, image] :
+       {std::pair{grid_path, OccupancyToImage(occupancy)},
+        std::pair{distance_path,
+                  DistanceImage(keymap::ObstacleMask(key.log_odds, occupied), clamp)}}) {
+    std::vector<std::uint8_t> png;
+    if (!cv::imencode(".png", image, png)) {
+      return RuntimeError("cannot encode " + path);
+    }
+    GRIDSLAM_RETURN_IF_ERROR(io::WriteFileAtomically(path, std::string(png.begin(), png.end())));
   }
-  index << key.id << " " << FormatSeconds(key.time) << " " << key.T_odom_key.x() << " "
-        << key.T_odom_key.y() << " " << key.T_odom_key.theta() << " " << key.scans.size() << "\n";
+  std::ostringstream line;
+  line << key.id << " " << FormatSeconds(key.time) << " " << key.T_odom_key.x() << " "
+       << key.T_odom_key.y() << " " << key.T_odom_key.theta() << " " << key.scans.size() << "\n";
+  index += line.str();
   return Status::Ok();
 }
 
@@ -84,14 +96,12 @@ int RunKeymaps(const KeymapsArgs& args, AppContext& context) {
   if (!reader.ok()) {
     return ReportError(reader.error());
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
-  const std::filesystem::path dir(args.output);
-  std::ofstream index(dir / "keymaps.txt");
-  index << "# id time T_odom_key.x T_odom_key.y T_odom_key.theta scans\n";
+  const std::filesystem::path dir(output.value()->path());
+  std::string index = "# id time T_odom_key.x T_odom_key.y T_odom_key.theta scans\n";
   scan_matching::FrontEnd front_end(options);
   long scans = 0;
   while (true) {
@@ -117,8 +127,15 @@ int RunKeymaps(const KeymapsArgs& args, AppContext& context) {
     }
   }
   if (scans == 0) {
-    return ReportError(InvalidInput("the log has no laser scans", args.log));
+    return ReportError(io::NoScansError(args.log, reader.value().Stats()));
   }
+  if (const Status s = io::WriteFileAtomically((dir / "keymaps.txt").string(), index); !s.ok()) {
+    return ReportError(s.error());
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
+    return ReportError(s.error());
+  }
+
   std::fprintf(stderr, "gridslam keymaps: %ld scans, %ld key maps written to %s\n", scans,
                front_end.Stats().key_maps, args.output.c_str());
   return kExitOk;

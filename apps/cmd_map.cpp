@@ -25,6 +25,7 @@
 #include "app_align_map.hpp"
 #include "app_map_output.hpp"
 #include "app_map_quality.hpp"
+#include "app_output_dir.hpp"
 #include "command.hpp"
 #include <time.h>
 #include <unistd.h>
@@ -211,20 +212,17 @@ int RunMap(const MapArgs& args, AppContext& context) {
     robots[r].log = args.logs[r];
     sources.push_back([&reader = readers[r]] { return reader.Next(); });
   }
-  // Created only once every recording has delivered a scan: a refused input leaves nothing.
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
-  // --snapshots: the map every S seconds of log time, written aside and moved into place at
-  // the end (no half-written output on an error).
-  const std::filesystem::path snapshot_dir = std::filesystem::path(args.output) / "snapshots";
+  // --snapshots: the map every S seconds of log time, written into the staged output (no
+  // half-written output on an error).
   const std::filesystem::path partial_dir =
-      std::filesystem::path(args.output) / ".snapshots.partial";
+      std::filesystem::path(output.value()->path()) / "snapshots";
   SnapshotWriter snapshots(partial_dir, args.snapshot_period, context.options.fusion);
+  std::error_code ec;
   if (args.snapshot_period > 0.0) {
-    std::filesystem::remove_all(partial_dir, ec);
     std::filesystem::create_directories(partial_dir, ec);
     if (ec) {
       return ReportError(
@@ -275,6 +273,11 @@ int RunMap(const MapArgs& args, AppContext& context) {
     std::filesystem::remove_all(partial_dir, ec);
     return ReportError(fed.ok() ? *snapshot_error : fed.error());
   }
+  for (std::size_t r = 0; r < readers.size(); ++r) {
+    if (robots[r].scans == 0) {  // nothing to map: say so, leave any earlier result alone
+      return ReportError(io::NoScansError(args.logs[r], readers[r].Stats()));
+    }
+  }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
   nlohmann::json rotations = nlohmann::json::array();
@@ -309,12 +312,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["logs"] = logs;
   if (args.snapshot_period > 0.0) {
     report["snapshots"] = snapshots.Json();
-    std::filesystem::remove_all(snapshot_dir, ec);
-    std::filesystem::rename(partial_dir, snapshot_dir, ec);
-    if (ec) {
-      return ReportError(RuntimeError("cannot move " + partial_dir.string() + " to " +
-                                      snapshot_dir.string() + ": " + ec.message()));
-    }
+  }
   }
   nlohmann::json joins = nlohmann::json::array();
   for (const pipeline::JoinRecord& j : result.joins) {
@@ -327,7 +325,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
-  auto quality = RunSelfCheck(args.output, result, quality_scans, context.options.quality,
+  auto quality = RunSelfCheck(output.value()->path(), result, quality_scans, context.options.quality,
                               context.options.fusion);
   if (!quality.ok()) {
     return ReportError(quality.error());
@@ -335,9 +333,12 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["quality"] = quality.value().report;
   const std::string config =
       "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
-  if (const Status s = WriteMapOutputs(args.output, result, robots,
+  if (const Status s = WriteMapOutputs(output.value()->path(), result, robots,
                                        context.options.eval.trajectory_frame, config, report);
       !s.ok()) {
+    return ReportError(s.error());
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
     return ReportError(s.error());
   }
   if (const int removed = RemoveStaleOutputs(args.output, robots.size(), result.maps.size());

@@ -46,7 +46,7 @@ int RunOdometry(const OdometryArgs& args, AppContext& context) {
   }
   const io::CarmenStats& stats = reader.value().Stats();
   if (poses.empty()) {
-    return ReportError(InvalidInput("the log has no laser scans", args.log));
+    return ReportError(io::NoScansError(args.log, stats));
   }
   if (const Status s = io::WriteTrajectoryByExtension(args.output, poses); !s.ok()) {
     return ReportError(s.error());

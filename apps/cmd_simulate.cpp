@@ -21,6 +21,7 @@
 #include "gridslam/io/trajectory_io.hpp"
 #include "gridslam/simulation/simulator.hpp"
 
+#include "app_output_dir.hpp"
 #include "command.hpp"
 
 namespace gridslam::app {
@@ -144,18 +145,21 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
   const auto t0 = std::chrono::steady_clock::now();
   auto result = simulation::Simulate(world.value(), route, options);
   if (!result.ok()) {
-    return ReportError(result.error());
+    Error error = result.error();
+    if (error.file.empty() && !options.route.empty() &&
+        error.message.find("route") != std::string::npos) {
+      error.file = options.route;  // name the route file in route errors
+    }
+    return ReportError(error);
   }
   const double sim_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const fs::path dir(args.output);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    return ReportError(
-        RuntimeError("cannot create output folder " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
+  const fs::path dir(output.value()->path());
   std::vector<std::vector<Eigen::Vector2d>> paths;
   for (std::size_t i = 0; i < result.value().robots.size(); ++i) {
     const simulation::RobotRun& run = result.value().robots[i];
@@ -178,6 +182,9 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
     if (!s.ok()) {
       return ReportError(s.error());
     }
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
+    return ReportError(s.error());
   }
 
   const MapLimits& limits = world.value().walls.Limits();

@@ -23,6 +23,7 @@
 #include "gridslam/multi_robot/relation_split.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 
+#include "app_output_dir.hpp"
 #include "command.hpp"
 
 namespace gridslam::app {
@@ -77,7 +78,7 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
     return ReportError(frames.error());
   }
   if (frames.value().empty()) {
-    return ReportError(InvalidInput("the log has no laser scans", args.log));
+    return ReportError(io::NoScansError(args.log, log_stats));
   }
   std::optional<std::vector<eval::Relation>> relations;
   if (!args.relations.empty()) {
@@ -120,12 +121,11 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
   }
 
   // 2. Write.
-  const fs::path dir(args.output);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
+  const fs::path dir(output.value()->path());
   nlohmann::json report = {{"log", args.log},
                            {"scans", all.size()},
                            {"pieces", args.pieces},
@@ -176,6 +176,9 @@ int RunSplit(const SplitArgs& args, AppContext& context) {
   if (const Status s =
           io::WriteFileAtomically((dir / "split.json").string(), report.dump(2) + "\n");
       !s.ok()) {
+    return ReportError(s.error());
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
     return ReportError(s.error());
   }
   std::printf("gridslam split: %zu scans of %s into %d robots (seed %llu, by %s, overlap %.1f s)\n",

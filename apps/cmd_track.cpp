@@ -11,11 +11,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gridslam/io/atomic_file.hpp"
+#include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/io/trajectory_io.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
+#include "app_output_dir.hpp"
 #include "command.hpp"
 #include <unistd.h>
 
@@ -74,13 +77,12 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
   if (!frames.ok()) {
     return ReportError(frames.error());
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.output, ec);
-  if (ec) {
-    return ReportError(RuntimeError("cannot create " + args.output + ": " + ec.message()));
+  auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
+  if (!output.ok()) {
+    return ReportError(output.error());
   }
   if (frames.value().empty()) {
-    return ReportError(InvalidInput("the log has no laser scans", args.log));
+    return ReportError(io::NoScansError(args.log, log_stats));
   }
   const auto read_done = Clock::now();
 
@@ -107,15 +109,19 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
     std::fprintf(stderr, "\n");
   }
 
-  const std::filesystem::path dir(args.output);
+  const std::filesystem::path dir(output.value()->path());
   for (const Status& s : {io::WriteTrajectory((dir / "trajectory.txt").string(), poses),
                           io::WriteTrajectoryTum((dir / "trajectory.tum").string(), poses)}) {
     if (!s.ok()) {
       return ReportError(s.error());
     }
   }
-  std::ofstream(dir / "config.yaml") << "# gridslam track: effective configuration\n"
-                                     << io::OptionsToYaml(context.options);
+  if (const Status s = io::WriteFileAtomically(
+          (dir / "config.yaml").string(),
+          "# gridslam track: effective configuration\n" + io::OptionsToYaml(context.options));
+      !s.ok()) {
+    return ReportError(s.error());
+  }
   const auto write_done = Clock::now();
 
   const scan_matching::FrontEndStats& stats = front_end.Stats();
@@ -142,7 +148,15 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
                       {"repaired_timestamps", log_stats.repaired_timestamps},
                       {"scans_without_odometry", log_stats.scans_without_odometry},
                       {"skipped_malformed", log_stats.skipped_malformed}};
-  std::ofstream(dir / "report.json") << report.dump(2) << "\n";
+  if (const Status s =
+          io::WriteFileAtomically((dir / "report.json").string(), report.dump(2) + "\n");
+      !s.ok()) {
+    return ReportError(s.error());
+  }
+  if (const Status s = output.value()->Commit(); !s.ok()) {
+    return ReportError(s.error());
+  }
+
   std::fprintf(stderr,
                "gridslam track: %zu scans, %ld key maps, %ld fallbacks, %ld searches; "
                "%.2f s (read %.2f s, front end %.2f s), %.0fx real time\n",

@@ -25,7 +25,8 @@ std::optional<Time> ParseSeconds(std::string_view text) {
   if (text.find_first_of("eE") != std::string_view::npos) {
     double value = 0.0;
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value)) {
+    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value) ||
+        std::abs(value) > static_cast<double>(kMaxParsedSeconds)) {
       return std::nullopt;
     }
     return FromSeconds(value);
@@ -57,10 +58,10 @@ std::optional<Time> ParseSeconds(std::string_view text) {
     any_digit = true;
     const int digit = c - '0';
     if (!seen_point) {
-      if (whole > 9'000'000'000LL) {
+      whole = whole * 10 + digit;
+      if (whole > kMaxParsedSeconds) {
         return std::nullopt;  // Would overflow int64 nanoseconds.
       }
-      whole = whole * 10 + digit;
     } else if (frac_digits < 9) {
       frac = frac * 10 + digit;
       ++frac_digits;
@@ -80,34 +81,34 @@ std::optional<Time> ParseSeconds(std::string_view text) {
 }
 
 std::string FormatSeconds(Time time, int decimals) {
-  std::int64_t ns = time.time_since_epoch().count();
-  const bool negative = ns < 0;
-  if (negative) {
-    ns = -ns;
-  }
+  const std::int64_t count = time.time_since_epoch().count();
+  const bool negative = count < 0;
+  // The magnitude as unsigned: -INT64_MIN does not fit an int64.
+  const std::uint64_t ns = negative ? std::uint64_t{0} - static_cast<std::uint64_t>(count)
+                                    : static_cast<std::uint64_t>(count);
   if (decimals < 0) {
     decimals = 0;
   }
   if (decimals > 9) {
     decimals = 9;
   }
-  std::int64_t scale = 1;
+  std::uint64_t scale = 1;
   for (int i = decimals; i < 9; ++i) {
     scale *= 10;
   }
-  const std::int64_t units = (ns + scale / 2) / scale;  // rounded to `decimals` digits
-  std::int64_t denom = 1;
+  const std::uint64_t units = (ns + scale / 2) / scale;  // rounded to `decimals` digits
+  std::uint64_t denom = 1;
   for (int i = 0; i < decimals; ++i) {
     denom *= 10;
   }
   char buffer[64];
   if (decimals == 0) {
-    std::snprintf(buffer, sizeof(buffer), "%s%lld", negative ? "-" : "",
-                  static_cast<long long>(units));
+    std::snprintf(buffer, sizeof(buffer), "%s%llu", negative ? "-" : "",
+                  static_cast<unsigned long long>(units));
   } else {
-    std::snprintf(buffer, sizeof(buffer), "%s%lld.%0*lld", negative ? "-" : "",
-                  static_cast<long long>(units / denom), decimals,
-                  static_cast<long long>(units % denom));
+    std::snprintf(buffer, sizeof(buffer), "%s%llu.%0*llu", negative ? "-" : "",
+                  static_cast<unsigned long long>(units / denom), decimals,
+                  static_cast<unsigned long long>(units % denom));
   }
   return buffer;
 }

@@ -30,8 +30,12 @@ double ToSeconds(Time time);
 double ToSeconds(Duration duration);
 Duration SecondsToDuration(double seconds);
 
+/// The largest |seconds| ParseSeconds accepts: 9e9 s (year 2255), inside int64 nanoseconds.
+constexpr std::int64_t kMaxParsedSeconds = 9'000'000'000LL;
+
 /// Parses a decimal number of seconds such as "976052864.458620", "-0.958593" or "1e3" exactly
-/// to nanoseconds (digits beyond the ninth decimal are rounded). Returns nullopt if malformed.
+/// to nanoseconds (digits beyond the ninth decimal are rounded). Returns nullopt if malformed,
+/// not finite, or beyond +-kMaxParsedSeconds.
 std::optional<Time> ParseSeconds(std::string_view text);
 
 /// Formats as decimal seconds with `decimals` digits after the point (6 as CARMEN prints).

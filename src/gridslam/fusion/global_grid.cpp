@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -14,8 +16,10 @@ namespace gridslam::fusion {
 Status FusionOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(
       Require(method == "scans" || method == "nearest", "fusion.method is scans or nearest"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(resolution > 0.0, "fusion.resolution > 0"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(max_range > 0.0, "fusion.max_range > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(resolution >= 0.005 && resolution <= 10.0, "fusion.resolution in [0.005, 10] m"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(max_range > 0.0 && max_range <= 1000.0, "fusion.max_range in (0, 1000] m"));
   GRIDSLAM_RETURN_IF_ERROR(Require(hit_probability > 0.5 && hit_probability < 1.0,
                                    "fusion.hit_probability in (0.5, 1)"));
   GRIDSLAM_RETURN_IF_ERROR(Require(miss_probability > 0.0 && miss_probability < 0.5,
@@ -26,7 +30,7 @@ Status FusionOptions::Validate() const {
                                    "fusion.free_probability < occupied_probability"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(min_motion >= 0.0 && min_rotation >= 0.0, "fusion.min_motion, min_rotation >= 0"));
-  return Require(margin >= 0.0, "fusion.margin >= 0");
+  return Require(margin >= 0.0 && margin <= 100.0, "fusion.margin in [0, 100] m");
 }
 
 namespace {
@@ -35,8 +39,19 @@ MapLimits BoundingLimits(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, d
                          double margin) {
   const Eigen::Vector2d origin = lo - Eigen::Vector2d::Constant(margin);
   const Eigen::Vector2d extent = hi - lo + Eigen::Vector2d::Constant(2.0 * margin);
-  const int width = std::max(1, static_cast<int>(std::ceil(extent.x() / resolution)));
-  const int height = std::max(1, static_cast<int>(std::ceil(extent.y() / resolution)));
+  const double w = std::ceil(extent.x() / resolution);
+  const double h = std::ceil(extent.y() / resolution);
+  // Checked before anything is allocated: a corrupt pose must not allocate without bound.
+  if (!std::isfinite(w) || !std::isfinite(h) || w * h > static_cast<double>(kMaxFusedCells)) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "the fused map would be %.3g x %.3g cells (%.3g m x %.3g m at %g m), more than "
+                  "%.3g cells",
+                  w, h, extent.x(), extent.y(), resolution, static_cast<double>(kMaxFusedCells));
+    throw std::length_error(text);
+  }
+  const int width = std::max(1, static_cast<int>(w));
+  const int height = std::max(1, static_cast<int>(h));
   return {resolution, origin, width, height};
 }
 

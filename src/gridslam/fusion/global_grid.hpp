@@ -18,8 +18,8 @@ namespace gridslam::fusion {
 
 struct FusionOptions {
   std::string method = "scans";     ///< "scans" (re-insert scans) or "nearest" (paper's Voronoi).
-  double resolution = 0.05;         ///< Cell side of the global grid [m].
-  double max_range = 30.0;          ///< Returns farther than this are not inserted [m].
+  double resolution = 0.05;         ///< Cell side of the global grid [m], 0.005 to 10.
+  double max_range = 30.0;          ///< Returns farther than this are not inserted [m], <= 1000.
   double hit_probability = 0.7;     ///< Inverse sensor model at a beam's end cell [-].
   double miss_probability = 0.4;    ///< Inverse sensor model along the beam [-].
   double clamp_probability = 0.97;  ///< Log-odds clamp, symmetric [-].
@@ -27,7 +27,7 @@ struct FusionOptions {
   double free_probability = 0.35;      ///< Output: free below this [-].
   double min_motion = 0.05;    ///< A scan is inserted after this much travel since the last [m]...
   double min_rotation = 0.05;  ///< ... or this much rotation [rad].
-  double margin = 1.0;         ///< Border around the observed area [m].
+  double margin = 1.0;         ///< Border around the observed area [m], 0 to 100.
 
   template <class V>
   void Visit(V& v) {
@@ -53,7 +53,12 @@ struct PosedScan {
   const LaserScan* scan = nullptr;
 };
 
-/// Re-inserts the scans into a log-odds grid covering them (method "scans").
+/// The most cells a fused map may have (2.5e8 floats, 1 GB): a trajectory spanning more (a
+/// corrupt pose, or far too fine a resolution) throws std::length_error before allocating.
+constexpr long kMaxFusedCells = 250'000'000L;
+
+/// Re-inserts the scans into a log-odds grid covering them (method "scans"). Throws
+/// std::length_error if the grid would exceed kMaxFusedCells.
 Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options);
 
 /// A key map at its optimized pose (borrowed).
@@ -63,7 +68,7 @@ struct PosedKeyMap {
 };
 
 /// The paper's fusion (method "nearest"): every cell copies the log-odds of the key map whose
-/// centre is nearest among those that observed the cell.
+/// centre is nearest among those that observed the cell. Throws as FuseScans.
 Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
                                 const FusionOptions& options);
 

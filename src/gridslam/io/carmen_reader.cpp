@@ -153,6 +153,13 @@ Status CarmenState::HandleParam(long line_number) {
                                 std::string(v) + "' as a number",
                             path, line_number);
       }
+      const double bound = k < 2 ? kMaxCarmenCoordinate : kMaxCarmenAngle;
+      if (std::abs(value) > bound) {
+        return InvalidInput("PARAM " + std::string(message.param_name) +
+                                ": field 'param_value': " + std::string(v) + " is beyond +-" +
+                                std::to_string(static_cast<long long>(bound)),
+                            path, line_number);
+      }
       ParamMounting& m = side == 0 ? front : rear;
       m.xyz[k] = value;
       m.known = true;
@@ -162,8 +169,14 @@ Status CarmenState::HandleParam(long line_number) {
 }
 
 Status CarmenState::Handle(long line_number) {
-  SplitFields(line, tokens);
-  Status status = ParseCarmenMessage(tokens, options, path, line_number, message);
+  Status status;
+  if (line.find('\0') != std::string::npos) {
+    status = InvalidInput("a NUL byte in the line (a binary file, not a CARMEN log?)", path,
+                          line_number);
+  } else {
+    SplitFields(line, tokens);
+    status = ParseCarmenMessage(tokens, options, path, line_number, message);
+  }
   if (status.ok()) {
     status = Dispatch(line_number);
   }
@@ -402,6 +415,27 @@ Result<std::optional<Frame>> CarmenReader::Next() { return state_->Next(); }
 const CarmenStats& CarmenReader::Stats() const { return state_->stats; }
 
 long CarmenReader::BytesRead() const { return state_->reader.FileOffset(); }
+
+Error NoScansError(const std::string& path, const CarmenStats& stats) {
+  std::string held = std::to_string(stats.lines) + " lines";
+  if (stats.lines > 0) {
+    held += ": " + std::to_string(stats.comments) + " comments or empty, " +
+            std::to_string(stats.odometry + stats.skipped_bad_odometry) + " ODOM, " +
+            std::to_string(stats.params) + " PARAM, " + std::to_string(stats.skipped_unknown) +
+            " of unknown types";
+    for (const std::string& type : stats.unknown_types) {
+      held += (type == *stats.unknown_types.begin() ? " (" : ", ") + type;
+    }
+    held += stats.unknown_types.empty() ? "" : ")";
+    if (stats.skipped_malformed > 0) {
+      held += ", " + std::to_string(stats.skipped_malformed) + " malformed (skipped)";
+    }
+  }
+  return InvalidInput("no laser scan in the log (" + held +
+                          "); expected FLASER, RLASER, RAWLASER1..4 or ROBOTLASER1/2 lines; "
+                          "nothing written",
+                      path);
+}
 
 Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOptions& options,
                                          CarmenStats* stats) {

@@ -68,6 +68,10 @@ class CarmenReader {
   std::unique_ptr<internal::CarmenState> state_;
 };
 
+/// The error for a log that delivered no laser scan (empty, binary, ODOM-only, comments-only or
+/// unknown types): InvalidInput naming the file and what it did hold.
+Error NoScansError(const std::string& path, const CarmenStats& stats);
+
 /// Reads a whole log into memory (convenience for tests and small logs).
 Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOptions& options);
 

@@ -24,10 +24,22 @@ constexpr const char* kHeader =
     "laser_tv laser_rv forward_safety_dist side_safety_dist turn_axis\n"
     "# FLASER num_readings [range_readings] x y theta odom_x odom_y odom_theta\n";
 
+/// Appends printf(format, value). %f of a huge value prints hundreds of digits: the text is
+/// measured first, so it never reads past a fixed buffer (issue 17: 1e308 wrote stack bytes).
 void AppendF(std::string& out, const char* format, double value) {
   char buffer[64];
   const int n = std::snprintf(buffer, sizeof(buffer), format, value);
-  out.append(buffer, static_cast<std::size_t>(n));
+  if (n < 0) {
+    return;
+  }
+  if (static_cast<std::size_t>(n) < sizeof(buffer)) {
+    out.append(buffer, static_cast<std::size_t>(n));
+    return;
+  }
+  const std::size_t size = out.size();
+  out.resize(size + static_cast<std::size_t>(n) + 1);
+  std::snprintf(out.data() + size, static_cast<std::size_t>(n) + 1, format, value);
+  out.resize(size + static_cast<std::size_t>(n));
 }
 
 void AppendPose(std::string& out, const Pose2& pose) {
@@ -137,13 +149,14 @@ void CarmenWriter::Param(const std::string& name, const std::string& value, Time
 }
 
 void CarmenWriter::LaserOffsetParams(const Pose2& T_base_laser, Time time) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%f", T_base_laser.x());
-  Param("robot_frontlaser_offset", buffer, time);
-  std::snprintf(buffer, sizeof(buffer), "%f", T_base_laser.y());
-  Param("robot_frontlaser_side_offset", buffer, time);
-  std::snprintf(buffer, sizeof(buffer), "%f", T_base_laser.theta());
-  Param("robot_frontlaser_angular_offset", buffer, time);
+  const auto text = [](double value) {
+    std::string out;
+    AppendF(out, "%f", value);
+    return out;
+  };
+  Param("robot_frontlaser_offset", text(T_base_laser.x()), time);
+  Param("robot_frontlaser_side_offset", text(T_base_laser.y()), time);
+  Param("robot_frontlaser_angular_offset", text(T_base_laser.theta()), time);
 }
 
 void CarmenWriter::Odometry(const CarmenOdometry& odometry) {
@@ -157,16 +170,21 @@ void CarmenWriter::Laser(const Frame& frame) {
 Status CarmenWriter::Close() { return WriteFileAtomically(path_, text_); }
 
 Status WriteCarmenLog(const std::string& path, const std::vector<Frame>& frames,
-                      const CarmenWriterOptions& options) {
+                      const CarmenWriterOptions& options, const std::string& comment) {
   const Time start = frames.empty() ? Time() : frames.front().time;
   CarmenWriter writer(path, options, start);
+  if (!comment.empty()) {
+    writer.Comment(comment);
+  }
   if (!frames.empty()) {
     writer.LaserOffsetParams(frames.front().T_base_laser, start);
   }
   for (std::size_t k = 0; k < frames.size(); ++k) {
     CarmenOdometry odometry{frames[k].time, frames[k].T_odom_base};
     if (k > 0) {
-      const double dt = ToSeconds(frames[k].time - frames[k - 1].time);
+      // Speeds from the previous scan, over the repaired times (what CARMEN's ODOM carries; no
+      // reader relies on them).
+      const double dt = ToSeconds(frames[k].corrected_time - frames[k - 1].corrected_time);
       if (dt > 0.0) {
         const Pose2 delta = Between(frames[k - 1].T_odom_base, frames[k].T_odom_base);
         odometry.tv = delta.x() / dt;

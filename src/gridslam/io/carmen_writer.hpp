@@ -68,9 +68,10 @@ class CarmenWriter {
   std::string text_;
 };
 
-/// Writes frames as a log: the header, laser-offset PARAMs from the first frame, then for each
-/// frame an ODOM line with its odometry (tv, rv from the previous frame) and its laser line.
+/// Writes frames as a log: the header, `comment` as '# ' lines (none if empty), laser-offset
+/// PARAMs from the first frame, then for each frame an ODOM line with its odometry (tv, rv from
+/// the previous frame, over the repaired times) and its laser line.
 Status WriteCarmenLog(const std::string& path, const std::vector<Frame>& frames,
-                      const CarmenWriterOptions& options);
+                      const CarmenWriterOptions& options, const std::string& comment = {});
 
 }  // namespace gridslam::io

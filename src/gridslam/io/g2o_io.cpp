@@ -3,6 +3,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/internal/graph_text.hpp"
 #include "gridslam/io/options_yaml.hpp"
 #include "gridslam/io/toro_io.hpp"
@@ -11,7 +12,6 @@ namespace gridslam::io {
 
 namespace {
 
-constexpr const char* kVertexFields[] = {"x", "y", "theta"};
 constexpr const char* kEdgeFields[] = {"dx",  "dy",  "dtheta", "I11", "I12",
                                        "I13", "I22", "I23",    "I33"};
 
@@ -19,65 +19,18 @@ constexpr const char* kEdgeFields[] = {"dx",  "dy",  "dtheta", "I11", "I12",
 
 Result<pose_graph::PoseGraph> ParseG2o(const std::string& text, const std::string& file,
                                        GraphReadStats* stats) {
-  internal::GraphAssembler assembler(file);
-  std::vector<std::string_view> tokens;
-  long line_number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) {
-      end = text.size();
-    }
-    const std::string_view line(text.data() + pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    internal::Tokenize(line, tokens);
-    if (tokens.empty()) {
-      continue;
-    }
-    const std::string tag(tokens[0]);
-    if (tag == "VERTEX_SE2") {
-      if (tokens.size() < 2) {
-        return InvalidInput("VERTEX_SE2: missing id", file, line_number);
-      }
-      const auto id = internal::ParseId(tokens[1], tag, "1 (id)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(id);
-      double v[3];
-      GRIDSLAM_RETURN_IF_ERROR(
-          internal::ParseNumbers(tokens, 2, 3, kVertexFields, file, line_number, v));
-      GRIDSLAM_RETURN_IF_ERROR(
-          assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]), line_number));
-    } else if (tag == "EDGE_SE2") {
-      if (tokens.size() < 3) {
-        return InvalidInput("EDGE_SE2: missing vertex ids", file, line_number);
-      }
-      const auto from = internal::ParseId(tokens[1], tag, "1 (i)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(from);
-      const auto to = internal::ParseId(tokens[2], tag, "2 (j)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(to);
-      double v[9];
-      GRIDSLAM_RETURN_IF_ERROR(
-          internal::ParseNumbers(tokens, 3, 9, kEdgeFields, file, line_number, v));
-      Eigen::Matrix3d information;
-      // Upper triangle, row-major, mirrored (g2o readInformationMatrix).
-      information << v[3], v[4], v[5], v[4], v[6], v[7], v[5], v[7], v[8];
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(), Pose2(v[0], v[1], v[2]),
-                                                 information, line_number));
-    } else if (tag == "FIX") {
-      if (tokens.size() < 2) {
-        return InvalidInput("FIX: no vertex id", file, line_number);
-      }
-      for (std::size_t k = 1; k < tokens.size(); ++k) {
-        const std::string field = std::to_string(k) + " (id)";
-        const auto id = internal::ParseId(tokens[k], tag, field.c_str(), file, line_number);
-        GRIDSLAM_RETURN_IF_ERROR(id);
-        GRIDSLAM_RETURN_IF_ERROR(assembler.Fix(id.value(), line_number));
-      }
-    } else {
-      assembler.Skip(tag, line_number);
-    }
-  }
-  return assembler.Finish(stats);
+  internal::GraphSyntax syntax;
+  syntax.vertex_tags = {"VERTEX_SE2"};
+  syntax.edge_tags = {"EDGE_SE2"};
+  syntax.fix_tag = "FIX";
+  syntax.edge_fields = kEdgeFields;
+  syntax.information = [](const std::string& /*tag*/, const double* m, const std::string& /*file*/,
+                          long /*line*/, Eigen::Matrix3d& information) {
+    // Upper triangle, row-major, mirrored (g2o readInformationMatrix).
+    information << m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5];
+    return Status::Ok();
+  };
+  return internal::ParseGraphText(text, file, syntax, stats);
 }
 
 Result<pose_graph::PoseGraph> ReadG2o(const std::string& path, GraphReadStats* stats) {
@@ -113,7 +66,7 @@ std::string FormatG2o(const pose_graph::PoseGraph& graph) {
 }
 
 Status WriteG2o(const std::string& path, const pose_graph::PoseGraph& graph) {
-  return internal::WriteFileAtomically(path, FormatG2o(graph));
+  return WriteFileAtomically(path, FormatG2o(graph));
 }
 
 namespace {

@@ -73,7 +73,7 @@ TEST(G2oIoTest, ErrorsNameFileLineAndField) {
       {"EDGE_SE2 0 1 1 0 0 1 0 0 1 0\n", 1, "expected 11 fields"},
       {"EDGE_SE2 0 1 1 0 0 1 0 0 1 0 nan\n", 1, "field 11 (I33)"},
       {"EDGE_SE2 0 0 1 0 0 1 0 0 1 0 1\n", 1, "to itself"},
-      {"EDGE_SE2 0 1 1 0 0 -1 0 0 1 0 1\n", 1, "negative diagonal"},
+      {"EDGE_SE2 0 1 1 0 0 -1 0 0 1 0 1\n", 1, "not positive definite"},
       {"VERTEX_SE2 0 0 0 0\nVERTEX_SE2 0 1 1 1\n", 2, "declared twice"},
       {"VERTEX_SE2 0 0 0 0\nFIX 3\n", 2, "FIX of unknown vertex 3"},
   };

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -38,6 +39,45 @@ bool HasExtension(const std::string& path, const std::string& ext) {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return e == ext;
+}
+
+/// The largest image read (10^8 pixels, 10000 x 10000): checked from the header, before
+/// anything is allocated.
+constexpr double kMaxImagePixels = 1e8;
+
+Status CheckImageSize(double width, double height, const std::string& path) {
+  if (width * height > kMaxImagePixels) {
+    return InvalidInput("image header announces " + std::to_string(static_cast<long long>(width)) +
+                            " x " + std::to_string(static_cast<long long>(height)) +
+                            " pixels, more than 1e8",
+                        path);
+  }
+  return Status::Ok();
+}
+
+/// Checks a PNG's IHDR size before decoding (a 19-byte file claiming a huge size made OpenCV
+/// allocate 4.1 GB). Other formats are left to OpenCV (which caps them at 2^30 pixels).
+Status CheckPngHeader(const std::string& bytes, const std::string& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0) {
+    return Status::Ok();  // not a PNG
+  }
+  if (bytes.size() < 24 || bytes.compare(12, 4, "IHDR") != 0) {
+    return InvalidInput("truncated PNG header (no IHDR chunk)", path);
+  }
+  const auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+    }
+    return v;
+  };
+  const std::uint32_t width = be32(16);
+  const std::uint32_t height = be32(20);
+  if (width == 0 || height == 0) {
+    return InvalidInput("PNG header announces an empty image", path);
+  }
+  return CheckImageSize(width, height, path);
 }
 
 /// Reads one whitespace-separated PGM header token, skipping '#' comments.
@@ -85,6 +125,16 @@ Result<RawImage> ParsePgm(const std::string& text, const std::string& path) {
   const long maxval = values[2];
   const std::size_t n =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  GRIDSLAM_RETURN_IF_ERROR(
+      CheckImageSize(static_cast<double>(values[0]), static_cast<double>(values[1]), path));
+  // The header is checked against the data before anything is allocated: a binary pixel takes
+  // 1 or 2 bytes, an ASCII one at least 2 (digit and separator).
+  const std::size_t min_bytes = magic == "P5" ? n * (maxval < 256 ? 1 : 2) : 2 * n - 1;
+  if (text.size() < pos + min_bytes) {
+    return InvalidInput("truncated PGM data (the header announces " + std::to_string(values[0]) +
+                            " x " + std::to_string(values[1]) + " pixels)",
+                        path);
+  }
   image.data.resize(n);
   auto scale = [maxval](long v) {
     return static_cast<std::uint8_t>(maxval == 255 ? v : (v * 255 + maxval / 2) / maxval);
@@ -131,8 +181,14 @@ Result<RawImage> ReadRawImage(const std::string& path) {
       (text.value()[1] == '5' || text.value()[1] == '2')) {
     return ParsePgm(text.value(), path);
   }
+  GRIDSLAM_RETURN_IF_ERROR(CheckPngHeader(text.value(), path));
   const std::vector<std::uint8_t> bytes(text.value().begin(), text.value().end());
-  cv::Mat mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  cv::Mat mat;
+  try {
+    mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    return InvalidInput(std::string("cannot decode image: ") + e.what(), path);
+  }
   if (mat.empty()) {
     return InvalidInput("cannot decode image", path);
   }

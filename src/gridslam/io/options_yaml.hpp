@@ -4,6 +4,9 @@
 // `gridslam --print-config` shows and what every run saves beside its results.
 #pragma once
 
+#include <cctype>
+#include <cmath>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -21,8 +24,9 @@ namespace internal {
 /// Reads fields from one YAML mapping; records the first error and the keys it knows.
 class YamlReadVisitor {
  public:
-  YamlReadVisitor(const YAML::Node& node, std::string path, std::string file)
-      : node_(node), path_(std::move(path)), file_(std::move(file)) {}
+  YamlReadVisitor(const YAML::Node& node, std::string path, std::string file,
+                  std::map<std::string, long>* lines)
+      : node_(node), path_(std::move(path)), file_(std::move(file)), lines_(lines) {}
 
   template <typename T>
   void operator()(const char* key, T& field, const char* /*doc*/) {
@@ -30,6 +34,7 @@ class YamlReadVisitor {
     if (!status_.ok() || !node_ || !node_[key]) {
       return;
     }
+    lines_->emplace(Qualified(key), node_[key].Mark().line + 1);
     try {
       if constexpr (std::is_same_v<T, std::vector<double>>) {
         field = node_[key].template as<std::vector<double>>();
@@ -56,18 +61,28 @@ class YamlReadVisitor {
                              node_[key].Mark().line + 1);
       return;
     }
-    YamlReadVisitor child(node_[key], Qualified(key), file_);
+    YamlReadVisitor child(node_[key], Qualified(key), file_, lines_);
     sub.Visit(child);
     status_ = child.Finish();
   }
 
-  /// Checks for unknown keys; returns the first error.
+  /// Checks for unknown, duplicate and non-scalar keys; returns the first error.
   Status Finish() {
     if (!status_.ok() || !node_ || !node_.IsMap()) {
       return status_;
     }
+    std::set<std::string> seen;
     for (const auto& kv : node_) {
+      if (!kv.first.IsScalar()) {
+        return InvalidInput("a key in '" + (path_.empty() ? std::string("the top level") : path_) +
+                                "' is not a plain name",
+                            file_, kv.first.Mark().line + 1);
+      }
       const auto key = kv.first.as<std::string>();
+      if (!seen.insert(key).second) {
+        return InvalidInput("option '" + Qualified(key) + "' given twice", file_,
+                            kv.first.Mark().line + 1);
+      }
       if (known_.count(key) == 0) {
         return InvalidInput("unknown option '" + Qualified(key) + "'", file_,
                             kv.first.Mark().line + 1);
@@ -75,6 +90,9 @@ class YamlReadVisitor {
     }
     return status_;
   }
+
+  /// The line of every option the file sets, by qualified name ("fusion.resolution").
+  using LineMap = std::map<std::string, long>;
 
  private:
   std::string Qualified(const std::string& key) const {
@@ -84,8 +102,38 @@ class YamlReadVisitor {
   std::string path_;
   std::string file_;
   std::set<std::string> known_;
+  std::map<std::string, long>* lines_;
   Status status_;
 };
+
+/// Names the file, and the line of the option a validation error is about (the longest option
+/// name set in the file that the message mentions), in a Validate() error.
+inline Status LocateValidationError(Status status, const std::string& file,
+                                    const std::map<std::string, long>& lines) {
+  if (status.ok()) {
+    return status;
+  }
+  Error error = status.error();
+  if (error.file.empty()) {
+    error.file = file;
+    std::size_t best = 0;
+    for (const auto& [key, line] : lines) {
+      const std::size_t at = error.message.find(key);
+      if (at == std::string::npos || key.size() <= best) {
+        continue;
+      }
+      const std::size_t after = at + key.size();
+      const bool whole = after >= error.message.size() ||
+                         (std::isalnum(static_cast<unsigned char>(error.message[after])) == 0 &&
+                          error.message[after] != '_');
+      if (whole) {
+        best = key.size();
+        error.line = line;
+      }
+    }
+  }
+  return error;
+}
 
 /// Writes fields as commented YAML.
 class YamlWriteVisitor {
@@ -106,7 +154,7 @@ class YamlWriteVisitor {
       }
       out_ << "]";
     } else if constexpr (std::is_floating_point_v<T>) {
-      out_ << Number(field);
+      out_ << Number(static_cast<double>(field));
     } else {
       out_ << field;
     }
@@ -122,6 +170,13 @@ class YamlWriteVisitor {
 
  private:
   static std::string Number(double v) {
+    // YAML 1.2 spells the special values .inf, -.inf and .nan ("inf" would read as a string).
+    if (std::isnan(v)) {
+      return ".nan";
+    }
+    if (std::isinf(v)) {
+      return v > 0 ? ".inf" : "-.inf";
+    }
     std::ostringstream s;
     s.precision(12);
     s << v;
@@ -150,7 +205,8 @@ long FindValidationLine(const YAML::Node& root, const std::string& message);
 /// Overrides `options` from the YAML text `yaml` (`file` names it in errors), without validating.
 template <typename Options>
 Status ApplyOptionsFromString(const std::string& yaml, const std::string& file, Options& options,
-                              YAML::Node* parsed = nullptr) {
+                              YAML::Node* parsed = nullptr,
+                              std::map<std::string, long>* lines = nullptr) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml);
@@ -166,9 +222,14 @@ Status ApplyOptionsFromString(const std::string& yaml, const std::string& file, 
   if (!root.IsMap()) {
     return InvalidInput("configuration must be a YAML mapping", file, 1);
   }
-  internal::YamlReadVisitor visitor(root, "", file);
-  options.Visit(visitor);
-  return visitor.Finish();
+  std::map<std::string, long> local;
+  try {
+    internal::YamlReadVisitor visitor(root, "", file, lines != nullptr ? lines : &local);
+    options.Visit(visitor);
+    return visitor.Finish();
+  } catch (const YAML::Exception& e) {
+    return InvalidInput("cannot read the configuration: " + e.msg, file, e.mark.line + 1);
+  }
 }
 
 /// Overrides `options` from the YAML text `yaml` (`file` names it in errors), then validates. A
@@ -176,11 +237,11 @@ Status ApplyOptionsFromString(const std::string& yaml, const std::string& file, 
 template <typename Options>
 Status LoadOptionsFromString(const std::string& yaml, const std::string& file, Options& options) {
   YAML::Node root;
-  GRIDSLAM_RETURN_IF_ERROR(ApplyOptionsFromString(yaml, file, options, &root));
-  Status status = options.Validate();
-  if (!status.ok() && status.error().file.empty() && root.IsMap()) {
+  std::map<std::string, long> lines;
+  GRIDSLAM_RETURN_IF_ERROR(ApplyOptionsFromString(yaml, file, options, &root, &lines));
+  Status status = internal::LocateValidationError(options.Validate(), file, lines);
+  if (!status.ok() && status.error().line == 0 && status.error().file == file && root.IsMap()) {
     Error error = status.error();
-    error.file = file;
     error.line = internal::FindValidationLine(root, error.message);
     return error;
   }

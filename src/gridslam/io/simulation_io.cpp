@@ -81,6 +81,10 @@ Result<std::vector<Eigen::Vector2d>> ReadWaypoints(const std::string& path) {
     if (t.size() != 2 || !ParseDouble(t[0], x) || !ParseDouble(t[1], y)) {
       return Status(InvalidInput("expected a waypoint 'x y' in metres", path, line));
     }
+    if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e5 || std::abs(y) > 1e5) {
+      return Status(
+          InvalidInput("waypoint coordinates must be finite, within +-1e5 m", path, line));
+    }
     points.emplace_back(x, y);
     return Status::Ok();
   });

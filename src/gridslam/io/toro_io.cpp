@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 
+#include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/internal/graph_text.hpp"
 #include "gridslam/io/options_yaml.hpp"
 
@@ -12,7 +13,6 @@ namespace gridslam::io {
 
 namespace {
 
-constexpr const char* kVertexFields[] = {"x", "y", "theta"};
 constexpr const char* kEdgeFields[] = {"dx",   "dy",   "dtheta", "I_ff", "I_fs",
                                        "I_ss", "I_rr", "I_fr",   "I_sr"};
 
@@ -20,71 +20,37 @@ constexpr const char* kEdgeFields[] = {"dx",   "dy",   "dtheta", "I_ff", "I_fs",
 
 Result<pose_graph::PoseGraph> ParseToro(const std::string& text, const std::string& file,
                                         GraphReadStats* stats, const ToroReadOptions& options) {
-  internal::GraphAssembler assembler(file);
-  std::vector<std::string_view> tokens;
-  long line_number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) {
-      end = text.size();
+  internal::GraphSyntax syntax;
+  syntax.vertex_tags = {"VERTEX2", "VERTEX"};
+  syntax.edge_tags = {"EDGE2", "EDGE"};  // EQUIV (node merging) and anything else are skipped.
+  syntax.edge_id_names[0] = "id1";
+  syntax.edge_id_names[1] = "id2";
+  syntax.edge_fields = kEdgeFields;
+  syntax.information = [covariance = options.covariance](const std::string& tag, const double* v,
+                                                         const std::string& at_file, long line,
+                                                         Eigen::Matrix3d& information) -> Status {
+    // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (FORMATS.md §3).
+    Eigen::Matrix3d m;
+    m << v[0], v[1], v[4], v[1], v[2], v[5], v[4], v[5], v[3];
+    // GTSAM's sanity check: a zero on the diagonal means another order (or a bad file).
+    if (m(0, 0) == 0.0 || m(1, 1) == 0.0 || m(2, 2) == 0.0) {
+      return InvalidInput(tag + ": zero on the " +
+                              std::string(covariance ? "covariance" : "information") +
+                              " diagonal (I_ff, I_ss or I_rr): wrong field order?",
+                          at_file, line);
     }
-    const std::string_view line(text.data() + pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    internal::Tokenize(line, tokens);
-    if (tokens.empty()) {
-      continue;
+    information = m;
+    if (covariance) {
+      Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
+      if (!lu.isInvertible()) {
+        return InvalidInput(tag + ": singular covariance", at_file, line);
+      }
+      information = lu.inverse();
+      information = 0.5 * (information + information.transpose()).eval();
     }
-    const std::string tag(tokens[0]);
-    if (tag == "VERTEX2" || tag == "VERTEX") {
-      if (tokens.size() < 2) {
-        return InvalidInput(tag + ": missing id", file, line_number);
-      }
-      const auto id = internal::ParseId(tokens[1], tag, "1 (id)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(id);
-      double v[3];
-      GRIDSLAM_RETURN_IF_ERROR(
-          internal::ParseNumbers(tokens, 2, 3, kVertexFields, file, line_number, v));
-      GRIDSLAM_RETURN_IF_ERROR(
-          assembler.AddVertex(id.value(), Pose2(v[0], v[1], v[2]), line_number));
-    } else if (tag == "EDGE2" || tag == "EDGE") {
-      if (tokens.size() < 3) {
-        return InvalidInput(tag + ": missing vertex ids", file, line_number);
-      }
-      const auto from = internal::ParseId(tokens[1], tag, "1 (id1)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(from);
-      const auto to = internal::ParseId(tokens[2], tag, "2 (id2)", file, line_number);
-      GRIDSLAM_RETURN_IF_ERROR(to);
-      double v[9];
-      GRIDSLAM_RETURN_IF_ERROR(
-          internal::ParseNumbers(tokens, 3, 9, kEdgeFields, file, line_number, v));
-      // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (FORMATS.md §3).
-      Eigen::Matrix3d m;
-      m << v[3], v[4], v[7], v[4], v[5], v[8], v[7], v[8], v[6];
-      // GTSAM's sanity check: a zero on the diagonal means another order (or a bad file).
-      if (m(0, 0) == 0.0 || m(1, 1) == 0.0 || m(2, 2) == 0.0) {
-        return InvalidInput(tag + ": zero on the " +
-                                std::string(options.covariance ? "covariance" : "information") +
-                                " diagonal (I_ff, I_ss or I_rr): wrong field order?",
-                            file, line_number);
-      }
-      Eigen::Matrix3d information = m;
-      if (options.covariance) {
-        Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
-        if (!lu.isInvertible()) {
-          return InvalidInput(tag + ": singular covariance", file, line_number);
-        }
-        information = lu.inverse();
-        information = 0.5 * (information + information.transpose()).eval();
-      }
-      GRIDSLAM_RETURN_IF_ERROR(assembler.AddEdge(from.value(), to.value(), Pose2(v[0], v[1], v[2]),
-                                                 information, line_number));
-    } else {
-      assembler.Skip(tag, line_number);  // EQUIV (node merging) and anything else.
-    }
-  }
-  return assembler.Finish(stats);
+    return Status::Ok();
+  };
+  return internal::ParseGraphText(text, file, syntax, stats);
 }
 
 Result<pose_graph::PoseGraph> ReadToro(const std::string& path, GraphReadStats* stats,
@@ -113,7 +79,7 @@ std::string FormatToro(const pose_graph::PoseGraph& graph) {
 }
 
 Status WriteToro(const std::string& path, const pose_graph::PoseGraph& graph) {
-  return internal::WriteFileAtomically(path, FormatToro(graph));
+  return WriteFileAtomically(path, FormatToro(graph));
 }
 
 }  // namespace gridslam::io

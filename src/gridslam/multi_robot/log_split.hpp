@@ -44,7 +44,8 @@ struct SplitOptions {
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(Require(by == "scans" || by == "time", "split.by is scans or time"));
     GRIDSLAM_RETURN_IF_ERROR(Require(overlap >= 0.0, "split.overlap >= 0"));
-    GRIDSLAM_RETURN_IF_ERROR(Require(max_translation >= 0.0, "split.max_translation >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(max_translation >= 0.0 && max_translation <= 1e4,
+                                     "split.max_translation in [0, 1e4] m (--max-offset)"));
     GRIDSLAM_RETURN_IF_ERROR(Require(min_scans >= 1, "split.min_scans >= 1"));
     return Status::Ok();
   }

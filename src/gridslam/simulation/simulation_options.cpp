@@ -1,18 +1,21 @@
 #include "gridslam/simulation/simulation_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gridslam::simulation {
 
 Status LaserSimOptions::Validate() const {
-  GRIDSLAM_RETURN_IF_ERROR(Require(num_beams >= 2, "simulation.laser.num_beams >= 2"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(num_beams >= 2 && num_beams <= 100000, "simulation.laser.num_beams in [2, 100000]"));
   GRIDSLAM_RETURN_IF_ERROR(Require(field_of_view > 0.0 && field_of_view <= 2.0 * std::numbers::pi,
                                    "simulation.laser.field_of_view in (0, 2 pi]"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(angular_resolution >= 0.0 &&
                   angular_resolution * (num_beams - 1) <= 2.0 * std::numbers::pi + 1e-9,
               "simulation.laser.angular_resolution >= 0 and (num_beams - 1) * it <= 2 pi"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(max_range > 0.0, "simulation.laser.max_range > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(max_range > 0.0 && max_range <= 1000.0, "simulation.laser.max_range in (0, 1000]"));
   GRIDSLAM_RETURN_IF_ERROR(Require(no_return_range == 0.0 || no_return_range >= max_range,
                                    "simulation.laser.no_return_range is 0 or >= max_range"));
   GRIDSLAM_RETURN_IF_ERROR(Require(range_noise >= 0.0, "simulation.laser.range_noise >= 0"));
@@ -80,10 +83,18 @@ Status SimulationOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(
       Require(resolution >= 0.005 && resolution <= 0.5, "simulation.resolution in [0.005, 0.5]"));
   GRIDSLAM_RETURN_IF_ERROR(Require(robots >= 1 && robots <= 4, "simulation.robots in 1..4"));
-  GRIDSLAM_RETURN_IF_ERROR(Require(duration >= 0.0, "simulation.duration >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(duration >= 0.0 && duration <= kMaxSimulatedDuration,
+              "simulation.duration in [0, 86400] s (one day of log per robot at most)"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(start_time >= 0.0 && start_time < 4e9, "simulation.start_time in [0, 4e9) seconds"));
   GRIDSLAM_RETURN_IF_ERROR(laser.Validate());
+  // What the logs will hold, bounded before anything runs (memory grows with it).
+  const double readings = std::max(duration, 1.0) * laser.rate * laser.num_beams * robots;
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(readings <= kMaxSimulatedReadings,
+              "simulation.duration * simulation.laser.rate * simulation.laser.num_beams * "
+              "simulation.robots <= 2e8 range readings"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(1.0 / laser.rate >= motion.control_period,
               "simulation.laser.rate at most 1 / simulation.motion.control_period"));

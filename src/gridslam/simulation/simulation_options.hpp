@@ -15,7 +15,7 @@ namespace gridslam::simulation {
 
 /// The simulated range sensor.
 struct LaserSimOptions {
-  int num_beams = 181;                           ///< Beams per scan.
+  int num_beams = 181;                           ///< Beams per scan, 2 to 100000.
   double field_of_view = std::numbers::pi;       ///< Angle from first to last beam [rad].
   double angular_resolution = 0.0;               ///< Beam spacing [rad]; 0 = fov / (beams - 1).
   double max_range = 30.0;                       ///< Longest reading; beyond = no return [m].
@@ -130,13 +130,17 @@ struct RelationSimOptions {
   [[nodiscard]] Status Validate() const;
 };
 
+/// Bounds checked by SimulationOptions::Validate() before a simulation starts.
+constexpr double kMaxSimulatedDuration = 86400.0;  ///< simulation.duration [s].
+constexpr double kMaxSimulatedReadings = 2e8;      ///< Range readings over all robots' logs.
+
 struct SimulationOptions {
   std::string world = "office";      ///< Built-in world name, or a PNG floor plan / map YAML path.
   std::string route;                 ///< Waypoints file; "" = the world's built-in tour.
   double resolution = 0.05;          ///< World grid cell size (and PNG pixel size) [m].
   int robots = 1;                    ///< Number of robots (1..4).
   int seed = 1;                      ///< Random seed; equal seeds give byte-identical output.
-  double duration = 0.0;             ///< Simulated time per robot [s]; 0 = one tour of the route.
+  double duration = 0.0;             ///< Simulated time per robot [s], <= 86400; 0 = one tour.
   double start_time = 1577836800.0;  ///< Timestamp of the first message [s since epoch].
   LaserSimOptions laser;
   MotionSimOptions motion;

@@ -2,11 +2,18 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
 namespace gridslam::io::internal {
 namespace {
+
+std::string FormatBound(double bound) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%g", bound);
+  return buffer;
+}
 
 constexpr int kMaxBeams = 100000;
 
@@ -44,12 +51,22 @@ class Fields {
     }
     return Status::Ok();
   }
+  /// A finite number with |value| <= bound.
+  Status Bounded(const char* name, double bound, double& value) {
+    GRIDSLAM_RETURN_IF_ERROR(Double(name, value));
+    if (!std::isfinite(value) || std::abs(value) > bound) {
+      return Error(std::string("field '") + name + "': " + std::string(tokens_[pos_ - 1]) +
+                   " is not a finite number within +-" + FormatBound(bound));
+    }
+    return Status::Ok();
+  }
   Status PoseField(const char* name, Pose2& pose) {
     double v[3];
     const std::string base(name);
     for (int i = 0; i < 3; ++i) {
       static constexpr const char* kSuffix[3] = {"_x", "_y", "_theta"};
-      GRIDSLAM_RETURN_IF_ERROR(Double((base + kSuffix[i]).c_str(), v[i]));
+      GRIDSLAM_RETURN_IF_ERROR(Bounded((base + kSuffix[i]).c_str(),
+                                       i < 2 ? kMaxCarmenCoordinate : kMaxCarmenAngle, v[i]));
     }
     pose = Pose2(v[0], v[1], v[2]);
     return Status::Ok();
@@ -93,7 +110,7 @@ class Fields {
         out.time_text = std::string_view();
         return Status::Ok();
       }
-      return Bad("ipc_timestamp", out.time_text, "decimal seconds");
+      return Bad("ipc_timestamp", out.time_text, "decimal seconds within +-9e9 s");
     }
     out.time = *parsed;
     return Status::Ok();
@@ -149,8 +166,10 @@ Status ParseRawOrRobotLaser(Fields& f, bool robot, const CarmenOptions& options,
   GRIDSLAM_RETURN_IF_ERROR(f.Ranges("range", n, out.scan.ranges));
   GRIDSLAM_RETURN_IF_ERROR(f.Count("num_remissions", m));
   GRIDSLAM_RETURN_IF_ERROR(f.Skip("remission", m));
-  if (!std::isfinite(start_angle) || !std::isfinite(resolution)) {
-    return f.Error("field 'start_angle'/'angular_resolution': not finite");
+  if (!std::isfinite(start_angle) || !std::isfinite(resolution) ||
+      std::abs(start_angle) > kMaxCarmenAngle || std::abs(resolution) > std::numbers::pi) {
+    return f.Error("field 'start_angle'/'angular_resolution': not finite, or beyond +-" +
+                   FormatBound(kMaxCarmenAngle) + " rad / +-pi rad");
   }
   out.scan.angle_min = start_angle;
   out.scan.angle_increment = resolution;

@@ -17,6 +17,12 @@
 
 namespace gridslam::io::internal {
 
+/// The largest |x|, |y| a CARMEN pose or laser offset may have [m] (100 km: anything farther is
+/// a corrupt number, and would make the fused map allocate without bound).
+constexpr double kMaxCarmenCoordinate = 1e5;
+/// The largest |theta| a CARMEN pose or beam angle may have [rad] (logs print unwrapped angles).
+constexpr double kMaxCarmenAngle = 1e4;
+
 enum class CarmenKind { kComment, kOdom, kTruePos, kParam, kSync, kLaser, kUnknown };
 
 struct CarmenMessage {

@@ -1,9 +1,14 @@
-// Shared machinery of the g2o (FORMATS.md §2) and TORO (§3) graph readers: whitespace
-// tokenizing, strict number parsing with file:line:field errors, and assembling a PoseGraph from
-// declared vertices, edges and FIX lines (vertices referenced only by edges are created at the
-// origin and reported, so that edges-only files such as manhattan.g2o can be chained later).
+// Shared machinery of the g2o (FORMATS.md §2) and TORO (§3) graph readers: one line loop for
+// both formats (a GraphSyntax names the tags and fields and builds the information matrix),
+// whitespace tokenizing, strict number parsing with file:line:field errors, and assembling a
+// PoseGraph from declared vertices, edges and FIX lines. Numbers must be finite and within
+// kMaxGraphCoordinate / kMaxGraphAngle / kMaxGraphInformation; information matrices must be
+// symmetric positive definite. A file that declares vertices must declare every vertex its
+// edges use; only a file with no vertex line at all (edges-only, such as manhattan.g2o) gets
+// its vertices created at the origin (reported in GraphReadStats::created_vertices).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -16,6 +21,29 @@
 #include "gridslam/pose_graph/pose_graph.hpp"
 
 namespace gridslam::io::internal {
+
+/// Bounds on a graph file's numbers: beyond them a value is a corrupt number (and would
+/// overflow chi-square), not a pose graph.
+constexpr double kMaxGraphCoordinate = 1e6;    ///< |x|, |y| of vertices and edges [m].
+constexpr double kMaxGraphAngle = 1e4;         ///< |theta| [rad].
+constexpr double kMaxGraphInformation = 1e18;  ///< |information entry|.
+
+/// A graph format's line syntax, for ParseGraphText.
+struct GraphSyntax {
+  std::vector<std::string> vertex_tags;  ///< "TAG id x y theta".
+  std::vector<std::string> edge_tags;    ///< "TAG id id dx dy dtheta m0 .. m5".
+  std::string fix_tag;                   ///< "FIX id..." (empty: none).
+  const char* edge_id_names[2] = {"i", "j"};
+  const char* const* edge_fields = nullptr;  ///< The 9 number fields' names.
+  /// The information matrix from the six matrix numbers `m`, or an error naming file:line.
+  std::function<Status(const std::string& tag, const double* m, const std::string& file, long line,
+                       Eigen::Matrix3d& information)>
+      information;
+};
+
+/// Parses a g2o or TORO text with `syntax`; other tags are skipped with one warning per tag.
+Result<pose_graph::PoseGraph> ParseGraphText(const std::string& text, const std::string& file,
+                                             const GraphSyntax& syntax, GraphReadStats* stats);
 
 /// Splits `line` at whitespace into `tokens` (views into `line`); '#' starts a comment.
 void Tokenize(std::string_view line, std::vector<std::string_view>& tokens);
@@ -48,6 +76,7 @@ class GraphAssembler {
     int to;
     Pose2 T_i_j;
     Eigen::Matrix3d information;
+    long line;
   };
   std::string file_;
   std::vector<pose_graph::Vertex> vertices_;
@@ -56,9 +85,6 @@ class GraphAssembler {
   std::vector<std::pair<int, long>> fixed_;
   GraphReadStats stats_;
 };
-
-/// Writes `text` to `path` through a temporary file and a rename (no half file on failure).
-Status WriteFileAtomically(const std::string& path, const std::string& text);
 
 /// Formats a double losslessly (the shortest text that reads back to the same value).
 std::string Number(double value);
