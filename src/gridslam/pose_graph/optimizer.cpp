@@ -1,11 +1,14 @@
 #include "gridslam/pose_graph/optimizer.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 
 #include "gridslam/common/check.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
 #include "gridslam/pose_graph/graph_utils.hpp"
+#include "gridslam/pose_graph/initialization.hpp"
 #include "gridslam/pose_graph/sgd_optimizer.hpp"
 
 namespace gridslam::pose_graph {
@@ -22,7 +25,15 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   report.method = options.method;
   report.chi2_initial = Chi2(graph);
   report.components = ConnectedComponents(graph).count;
-  const bool use_sgd = options.method == "sgd" || options.method == "sgd+gn";
+  Initialization initialization = Initialization::kNone;
+  ParseInitialization(options.initialization, &initialization);
+  if (initialization != Initialization::kNone) {
+    report.initialized = InitializeOrientationFirst(graph, initialization);
+  }
+  // SGD has no outlier defence (a few wrong closures bend its result beyond what Gauss-Newton can
+  // undo), so with a robust mechanism sgd+gn runs the robust least-squares stage alone.
+  const bool use_sgd =
+      options.method == "sgd" || (options.method == "sgd+gn" && options.robust.mechanism == "none");
   const bool use_ls = options.method != "sgd";
 
   if (use_sgd) {
@@ -44,19 +55,67 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   if (use_ls) {
     const bool levenberg = options.method == "lm";
     const std::string stage = levenberg ? "lm" : "gn";
-    GaussNewtonSolver solver(graph, EffectiveFixed(graph), options.gn);
-    GaussNewtonSolver::Callback ls_callback;
-    if (callback) {
-      ls_callback = [&](const LeastSquaresIteration& it) {
-        callback(IterationRecord{stage, it.iteration, it.chi2, elapsed()});
-      };
+    const RobustOptions& robust = options.robust;
+    GaussNewtonOptions gn = options.gn;
+    if (robust.mechanism == "dcs") {
+      gn.robust_kernel = "dcs";
+      gn.robust_width = std::sqrt(robust.dcs_phi);
     }
-    const LeastSquaresSummary summary = solver.Run(graph, levenberg, iterations, ls_callback);
-    report.ls_iterations = summary.iterations;
-    report.converged = summary.converged;
+    GaussNewtonSolver solver(graph, EffectiveFixed(graph), gn);
+    int ls_iteration = 0;
+    auto run = [&](const std::string& name, int limit) {
+      GaussNewtonSolver::Callback ls_callback;
+      if (callback) {
+        ls_callback = [&](const LeastSquaresIteration& it) {
+          callback(IterationRecord{name, ls_iteration + it.iteration, it.chi2, elapsed()});
+        };
+      }
+      const LeastSquaresSummary summary = solver.Run(graph, levenberg, limit, ls_callback);
+      ls_iteration += summary.iterations;
+      report.converged = summary.converged;
+    };
+    if (robust.mechanism == "gnc") {
+      // Yang et al. 2020: mu starts at 2 max r^2 / c^2 (the cost is then convex in the residuals
+      // that matter) and is divided by gnc_factor per step down to 1.
+      double max_chi2 = 0.0;
+      for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+        if (IsLoopClosure(graph.edge(k))) {
+          max_chi2 = std::max(max_chi2, EdgeChi2(graph, k));
+        }
+      }
+      double mu = std::max(1.0, 2.0 * max_chi2 / robust.gnc_threshold);
+      while (true) {
+        solver.SetRobustKernel("geman_mcclure", std::sqrt(mu * robust.gnc_threshold));
+        run("gnc", mu > 1.0 ? robust.gnc_step_iterations : iterations);
+        if (mu <= 1.0) {
+          break;
+        }
+        mu = std::max(1.0, mu / robust.gnc_factor);
+      }
+    } else {
+      run(robust.mechanism == "dcs" ? "dcs" : stage, iterations);
+    }
+    if (robust.mechanism != "none" && robust.inlier_chi2 > 0.0) {
+      solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
+      run(stage, iterations);
+    }
+    report.ls_iterations = ls_iteration;
   }
   report.iterations = report.sgd_iterations + report.ls_iterations;
   report.chi2_final = Chi2(graph);
+  report.chi2_inliers = report.chi2_final;
+  if (options.robust.mechanism != "none") {
+    report.chi2_inliers = 0.0;
+    for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+      const double chi2 = EdgeChi2(graph, k);
+      const bool robust_edge = options.gn.robust_edges == "all" || IsLoopClosure(graph.edge(k));
+      if (robust_edge && options.robust.inlier_chi2 > 0.0 && chi2 > options.robust.inlier_chi2) {
+        ++report.rejected_edges;
+      } else {
+        report.chi2_inliers += chi2;
+      }
+    }
+  }
   report.seconds = elapsed();
   report.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return report;
