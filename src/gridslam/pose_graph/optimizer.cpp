@@ -13,6 +13,21 @@
 
 namespace gridslam::pose_graph {
 
+namespace {
+
+/// Sum over edges of chi^2, with robust edges capped at `cap` (no cap when 0).
+double TruncatedCost(const PoseGraph& graph, double cap, const std::string& robust_edges) {
+  double cost = 0.0;
+  for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+    const double chi2 = EdgeChi2(graph, k);
+    const bool robust = robust_edges == "all" || IsLoopClosure(graph.edge(k));
+    cost += robust && cap > 0.0 ? std::min(chi2, cap) : chi2;
+  }
+  return cost;
+}
+
+}  // namespace
+
 OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, int iterations,
                             const IterationCallback& callback) {
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
@@ -31,9 +46,12 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
     report.initialized = InitializeOrientationFirst(graph, initialization);
   }
   // SGD has no outlier defence (a few wrong closures bend its result beyond what Gauss-Newton can
-  // undo), so with a robust mechanism sgd+gn runs the robust least-squares stage alone.
-  const bool use_sgd =
-      options.method == "sgd" || (options.method == "sgd+gn" && options.robust.mechanism == "none");
+  // undo), so with a robust mechanism sgd+gn runs the robust least-squares stage alone; after an
+  // orientation-first initialization SGD's warm-up is not needed either (and, measured on noisy
+  // M3500, its large first steps move the guess out of the global basin).
+  const bool use_sgd = options.method == "sgd" ||
+                       (options.method == "sgd+gn" && options.robust.mechanism == "none" &&
+                        initialization == Initialization::kNone);
   const bool use_ls = options.method != "sgd";
 
   if (use_sgd) {
@@ -57,12 +75,8 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
     const std::string stage = levenberg ? "lm" : "gn";
     const RobustOptions& robust = options.robust;
     GaussNewtonOptions gn = options.gn;
-    if (robust.mechanism == "dcs") {
-      gn.robust_kernel = "dcs";
-      gn.robust_width = std::sqrt(robust.dcs_phi);
-    }
-    GaussNewtonSolver solver(graph, EffectiveFixed(graph), gn);
     int ls_iteration = 0;
+    GaussNewtonSolver solver(graph, EffectiveFixed(graph), gn);
     auto run = [&](const std::string& name, int limit) {
       GaussNewtonSolver::Callback ls_callback;
       if (callback) {
@@ -92,10 +106,42 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
         }
         mu = std::max(1.0, mu / robust.gnc_factor);
       }
+    } else if (robust.mechanism == "dcs") {
+      // One run per Phi from the same start, each polished by the truncated cost; the result with
+      // the lowest truncated cost wins (a small Phi keeps wrong closures out from a good start, a
+      // large one keeps correct closures in despite a drifted start).
+      std::vector<Pose2> initial(graph.num_vertices());
+      for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
+        initial[static_cast<std::size_t>(v)] = graph.vertex(v).T_map_v;
+      }
+      std::vector<Pose2> best;
+      double best_cost = 0.0;
+      for (const double phi : robust.dcs_phi) {
+        for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
+          graph.SetPose(v, initial[static_cast<std::size_t>(v)]);
+        }
+        solver.SetRobustKernel("dcs", std::sqrt(phi));
+        run("dcs", iterations);
+        if (robust.inlier_chi2 > 0.0) {
+          solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
+          run(stage, iterations);
+        }
+        const double cost = TruncatedCost(graph, robust.inlier_chi2, options.gn.robust_edges);
+        if (best.empty() || cost < best_cost) {
+          best_cost = cost;
+          best.resize(initial.size());
+          for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
+            best[static_cast<std::size_t>(v)] = graph.vertex(v).T_map_v;
+          }
+        }
+      }
+      for (int v = 0; v < static_cast<int>(best.size()); ++v) {
+        graph.SetPose(v, best[static_cast<std::size_t>(v)]);
+      }
     } else {
-      run(robust.mechanism == "dcs" ? "dcs" : stage, iterations);
+      run(stage, iterations);
     }
-    if (robust.mechanism != "none" && robust.inlier_chi2 > 0.0) {
+    if (robust.mechanism == "gnc" && robust.inlier_chi2 > 0.0) {
       solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
       run(stage, iterations);
     }
