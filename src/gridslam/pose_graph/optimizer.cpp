@@ -42,7 +42,10 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
   report.components = ConnectedComponents(graph).count;
   Initialization initialization = Initialization::kNone;
   ParseInitialization(options.initialization, &initialization);
-  if (initialization != Initialization::kNone) {
+  const bool robust_on = options.robust.mechanism != "none";
+  // With a robust mechanism the initialization runs inside the robust stage, on the edges that
+  // stage kept (a least-squares initialization from all edges would be bent by wrong ones).
+  if (initialization != Initialization::kNone && !robust_on) {
     report.initialized = InitializeOrientationFirst(graph, initialization);
   }
   // SGD has no outlier defence (a few wrong closures bend its result beyond what Gauss-Newton can
@@ -88,62 +91,116 @@ OptimizationReport Optimize(PoseGraph& graph, const OptimizerOptions& options, i
       ls_iteration += summary.iterations;
       report.converged = summary.converged;
     };
-    if (robust.mechanism == "gnc") {
-      // Yang et al. 2020: mu starts at 2 max r^2 / c^2 (the cost is then convex in the residuals
-      // that matter) and is divided by gnc_factor per step down to 1.
-      double max_chi2 = 0.0;
-      for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
-        if (IsLoopClosure(graph.edge(k))) {
-          max_chi2 = std::max(max_chi2, EdgeChi2(graph, k));
+    auto poses = [&] {
+      std::vector<Pose2> out(graph.num_vertices());
+      for (int v = 0; v < static_cast<int>(out.size()); ++v) {
+        out[static_cast<std::size_t>(v)] = graph.vertex(v).T_map_v;
+      }
+      return out;
+    };
+    auto set_poses = [&](const std::vector<Pose2>& in) {
+      for (int v = 0; v < static_cast<int>(in.size()); ++v) {
+        graph.SetPose(v, in[static_cast<std::size_t>(v)]);
+      }
+    };
+    auto polish = [&] {
+      if (robust.inlier_chi2 > 0.0) {
+        solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
+        run(stage, iterations);
+      }
+      return TruncatedCost(graph, robust.inlier_chi2, options.gn.robust_edges);
+    };
+    // One robust pass from the graph's current poses; leaves its result in the graph and returns
+    // its truncated cost.
+    auto robust_pass = [&]() -> double {
+      if (robust.mechanism == "gnc") {
+        // Yang et al. 2020: mu starts at 2 max r^2 / c^2 (the cost is then convex in the
+        // residuals that matter) and is divided by gnc_factor per step down to 1.
+        double max_chi2 = 0.0;
+        for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+          if (IsLoopClosure(graph.edge(k))) {
+            max_chi2 = std::max(max_chi2, EdgeChi2(graph, k));
+          }
         }
-      }
-      double mu = std::max(1.0, 2.0 * max_chi2 / robust.gnc_threshold);
-      while (true) {
-        solver.SetRobustKernel("geman_mcclure", std::sqrt(mu * robust.gnc_threshold));
-        run("gnc", mu > 1.0 ? robust.gnc_step_iterations : iterations);
-        if (mu <= 1.0) {
-          break;
+        double mu = std::max(1.0, 2.0 * max_chi2 / robust.gnc_threshold);
+        while (true) {
+          solver.SetRobustKernel("geman_mcclure", std::sqrt(mu * robust.gnc_threshold));
+          run("gnc", mu > 1.0 ? robust.gnc_step_iterations : iterations);
+          if (mu <= 1.0) {
+            break;
+          }
+          mu = std::max(1.0, mu / robust.gnc_factor);
         }
-        mu = std::max(1.0, mu / robust.gnc_factor);
+        return polish();
       }
-    } else if (robust.mechanism == "dcs") {
-      // One run per Phi from the same start, each polished by the truncated cost; the result with
-      // the lowest truncated cost wins (a small Phi keeps wrong closures out from a good start, a
-      // large one keeps correct closures in despite a drifted start).
-      std::vector<Pose2> initial(graph.num_vertices());
-      for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
-        initial[static_cast<std::size_t>(v)] = graph.vertex(v).T_map_v;
-      }
+      // DCS: one run per Phi from the same start, each polished; the lowest truncated cost wins
+      // (a small Phi keeps wrong closures out from a good start, a large one keeps correct
+      // closures in despite a drifted start).
+      const std::vector<Pose2> initial = poses();
       std::vector<Pose2> best;
       double best_cost = 0.0;
       for (const double phi : robust.dcs_phi) {
-        for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
-          graph.SetPose(v, initial[static_cast<std::size_t>(v)]);
-        }
+        set_poses(initial);
         solver.SetRobustKernel("dcs", std::sqrt(phi));
         run("dcs", iterations);
-        if (robust.inlier_chi2 > 0.0) {
-          solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
-          run(stage, iterations);
-        }
-        const double cost = TruncatedCost(graph, robust.inlier_chi2, options.gn.robust_edges);
+        const double cost = polish();
         if (best.empty() || cost < best_cost) {
           best_cost = cost;
-          best.resize(initial.size());
-          for (int v = 0; v < static_cast<int>(initial.size()); ++v) {
-            best[static_cast<std::size_t>(v)] = graph.vertex(v).T_map_v;
-          }
+          best = poses();
         }
       }
-      for (int v = 0; v < static_cast<int>(best.size()); ++v) {
-        graph.SetPose(v, best[static_cast<std::size_t>(v)]);
-      }
+      set_poses(best);
+      return best_cost;
+    };
+    if (!robust_on) {
+      run(stage, iterations);
     } else {
-      run(stage, iterations);
-    }
-    if (robust.mechanism == "gnc" && robust.inlier_chi2 > 0.0) {
-      solver.SetRobustKernel("truncated", std::sqrt(robust.inlier_chi2));
-      run(stage, iterations);
+      std::vector<Pose2> best;
+      double best_cost = 0.0;
+      auto pass_from = [&](const std::vector<Pose2>& start_poses) {
+        set_poses(start_poses);
+        const double cost = robust_pass();
+        if (best.empty() || cost < best_cost) {
+          best_cost = cost;
+          best = poses();
+        }
+      };
+      const std::vector<Pose2> given = poses();
+      pass_from(given);
+      if (initialization != Initialization::kNone) {
+        // Two more starts, the better truncated cost wins: the initialization from all edges
+        // (right when there are no wrong ones; MIT needs it) and from the edges the first pass
+        // kept (right when there are).
+        PoseGraph kept;
+        for (const Vertex& v : graph.vertices()) {
+          kept.AddVertex(v.id, v.T_map_v, v.fixed);
+        }
+        for (int k = 0; k < static_cast<int>(graph.num_edges()); ++k) {
+          const Edge& e = graph.edge(k);
+          const bool robust_edge = options.gn.robust_edges == "all" || IsLoopClosure(e);
+          if (!robust_edge || robust.inlier_chi2 <= 0.0 ||
+              EdgeChi2(graph, k) <= robust.inlier_chi2) {
+            kept.AddEdge(e.from, e.to, e.T_i_j, e.information, e.role);
+          }
+        }
+        for (int v = 0; v < static_cast<int>(graph.num_vertices()); ++v) {
+          kept.SetPose(v, given[static_cast<std::size_t>(v)]);
+        }
+        set_poses(given);
+        if (InitializeOrientationFirst(graph, initialization)) {
+          report.initialized = true;
+          pass_from(poses());
+        }
+        if (InitializeOrientationFirst(kept, initialization)) {
+          report.initialized = true;
+          std::vector<Pose2> start_poses;
+          for (const Vertex& v : kept.vertices()) {
+            start_poses.push_back(v.T_map_v);
+          }
+          pass_from(start_poses);
+        }
+      }
+      set_poses(best);
     }
     report.ls_iterations = ls_iteration;
   }
