@@ -27,7 +27,9 @@ struct OptimizerOptions {
   int warmup_iterations = 2;
   /// Initial guess computed first (initialization.hpp): "none" (the graph's poses), "chordal"
   /// (chordal relaxation of the orientations, then positions) or "lago" (LAGO's regularized
-  /// linear orientations, then positions).
+  /// linear orientations, then positions). With a robust mechanism, the robust stage runs from
+  /// three starts (the graph's poses, the initialization from all edges, and from the edges the
+  /// first run kept) and keeps the lowest truncated cost. sgd+gn skips SGD when this is set.
   std::string initialization = "none";
   SgdOptions sgd;
   GaussNewtonOptions gn;
