@@ -75,6 +75,32 @@ TEST(RobustOptimizationTest, OdometryEdgesAreNeverDownWeighted) {
   EXPECT_NEAR(report.chi2_inliers, report.chi2_final, 1e-9 * report.chi2_final);
 }
 
+TEST(RobustOptimizationTest, WithChordalInitializationSurvivesOutliersAndKeepsTheOptimum) {
+  const SyntheticGraph synthetic = Make();
+  const PoseGraph clean = CleanOptimum(synthetic);
+  OptimizerOptions options = Options("sgd+gn", "dcs");
+  options.initialization = "chordal";
+  PoseGraph graph = synthetic.graph;
+  const OptimizationReport clean_report = Optimize(graph, options);
+  EXPECT_TRUE(clean_report.initialized);
+  EXPECT_EQ(clean_report.rejected_edges, 0);
+  EXPECT_NEAR(clean_report.chi2_final, Chi2(clean), 1e-6 * Chi2(clean));
+  PoseGraph corrupted = synthetic.graph;
+  OutlierOptions outliers;
+  outliers.count = 40;
+  AddOutliers(corrupted, outliers);
+  // Chordal alone (least squares) is bent by the wrong edges...
+  PoseGraph plain = corrupted;
+  OptimizerOptions no_defence = Options("gn", "none");
+  no_defence.initialization = "chordal";
+  Optimize(plain, no_defence);
+  EXPECT_GT(ComparePoses(plain, clean).mean_translation, 0.2);
+  // ... the robust stage with it is not.
+  const OptimizationReport report = Optimize(corrupted, options);
+  EXPECT_LT(ComparePoses(corrupted, clean).mean_translation, 1e-4);
+  EXPECT_EQ(report.rejected_edges, 40);
+}
+
 TEST(RobustOptimizationTest, OptionsValidate) {
   OptimizerOptions options;
   options.robust.mechanism = "switchable";
