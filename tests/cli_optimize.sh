@@ -57,4 +57,20 @@ code_missing=$?
 set -e
 [ "$code" -eq 2 ] || { echo "bad output extension: expected exit 2, got $code"; exit 1; }
 [ "$code_missing" -eq 2 ] || { echo "missing input: expected exit 2, got $code_missing"; exit 1; }
+# Outlier benchmark options (docs/robust_optimization.md): wrong edges added, the error against a
+# reference reported; a reference with other vertices exits 2.
+"$bin" optimize "$tmp/square.g2o" -o "$tmp/outliers.g2o" --method gn --robust dcs \
+  --initialization chordal --add-outliers 2 --outlier-kind random --seed 3 \
+  --reference "$tmp/out_gn.g2o" --json > "$tmp/outliers.json"
+for key in mean_position_error max_position_error rejected_edges chi2_inliers; do
+  grep -q "\"$key\"" "$tmp/outliers.json" || { echo "no $key"; cat "$tmp/outliers.json"; exit 1; }
+done
+[ "$(grep -c '^EDGE_SE2' "$tmp/outliers.g2o")" -eq 6 ] || { echo "outliers not added"; exit 1; }
+head -3 "$tmp/square.g2o" > "$tmp/three.g2o"
+set +e
+"$bin" optimize "$tmp/square.g2o" -o "$tmp/ref_out.g2o" --reference "$tmp/three.g2o" 2> /dev/null
+code=$?
+set -e
+[ "$code" -eq 2 ] || { echo "reference mismatch: expected exit 2, got $code"; exit 1; }
+[ ! -e "$tmp/ref_out.g2o" ] || { echo "output written for a bad reference"; exit 1; }
 echo "cli_optimize: ok"

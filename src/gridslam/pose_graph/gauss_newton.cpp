@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "gridslam/common/check.hpp"
 #include "gridslam/pose_graph/edge_error.hpp"
@@ -16,9 +17,11 @@ namespace {
 std::size_t U(int i) { return static_cast<std::size_t>(i); }
 
 /// Robust kernel rho(s) of the squared error s = e^T Omega e and its derivative (g2o's
-/// RobustKernelHuber / RobustKernelCauchy with delta = width).
+/// RobustKernelHuber / RobustKernelCauchy with delta = width; dynamic covariance scaling, Agarwal
+/// et al. 2013, with Phi = width^2; Geman-McClure with scale width^2, the kernel of GNC; truncated
+/// least squares at width^2, the polish after them).
 struct Kernel {
-  int kind = 0;  // 0 none, 1 Huber, 2 Cauchy.
+  int kind = 0;  // 0 none, 1 Huber, 2 Cauchy, 3 DCS, 4 Geman-McClure, 5 truncated.
   double delta2 = 1.0;
 
   void Evaluate(double s, double* rho, double* weight) const {
@@ -30,6 +33,19 @@ struct Kernel {
     } else if (kind == 2) {
       *rho = delta2 * std::log1p(s / delta2);
       *weight = 1.0 / (1.0 + s / delta2);
+    } else if (kind == 3 && s > delta2) {
+      // DCS scales the information by w = (2 Phi / (Phi + s))^2 (the square of the closed-form
+      // switch of switchable constraints); rho' = w and continuity at s = Phi give this rho.
+      const double q = delta2 + s;
+      *rho = delta2 * (3.0 * s - delta2) / q;
+      *weight = 4.0 * delta2 * delta2 / (q * q);
+    } else if (kind == 5) {
+      *rho = std::min(s, delta2);  // Truncated least squares: edges above delta2 drop out.
+      *weight = s <= delta2 ? 1.0 : 0.0;
+    } else if (kind == 4) {
+      const double q = delta2 + s;
+      *rho = delta2 * s / q;
+      *weight = delta2 * delta2 / (q * q);
     } else {
       *rho = s;
       *weight = 1.0;
@@ -37,11 +53,31 @@ struct Kernel {
   }
 };
 
+int KernelKind(const std::string& name) {
+  if (name == "huber") {
+    return 1;
+  }
+  if (name == "cauchy") {
+    return 2;
+  }
+  if (name == "dcs") {
+    return 3;
+  }
+  if (name == "geman_mcclure") {
+    return 4;
+  }
+  if (name == "truncated") {
+    return 5;
+  }
+  return 0;
+}
+
 }  // namespace
 
 class NormalEquations {
  public:
-  NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed);
+  /// `robust_all`: the kernel applies to every edge, else only to loop closures (IsLoopClosure).
+  NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed, bool robust_all);
 
   /// Cost (robust) and plain chi^2 at poses x.
   void Evaluate(const std::vector<Eigen::Vector3d>& x, const Kernel& kernel, double* cost,
@@ -75,6 +111,7 @@ class NormalEquations {
     double cos_z = 1.0;
     double sin_z = 0.0;
     Eigen::Matrix3d information;
+    bool robust = true;  ///< The kernel applies.
   };
 
   static BlockCholesky Build(const PoseGraph& graph, const std::vector<int>& block, int num_blocks);
@@ -118,7 +155,8 @@ BlockCholesky NormalEquations::Build(const PoseGraph& graph, const std::vector<i
   return BlockCholesky(num_blocks, pairs);
 }
 
-NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed)
+NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>& fixed,
+                                 bool robust_all)
     : block_(NumberFreeVertices(graph, fixed, &num_blocks_)),
       cholesky_(Build(graph, block_, num_blocks_)),
       b_(Eigen::VectorXd::Zero(3 * num_blocks_)) {
@@ -132,6 +170,7 @@ NormalEquations::NormalEquations(const PoseGraph& graph, const std::vector<bool>
     s.cos_z = std::cos(s.z.z());
     s.sin_z = std::sin(s.z.z());
     s.information = graph.edge(k).information;
+    s.robust = robust_all || IsLoopClosure(graph.edge(k));
     if (s.bi >= 0) {
       s.ii = cholesky_.Find(s.bi, s.bi);
     }
@@ -154,7 +193,7 @@ void NormalEquations::Evaluate(const std::vector<Eigen::Vector3d>& x, const Kern
     const double s2 = e.dot(s.information * e);
     double rho = s2;
     double weight = 1.0;
-    if (kernel.kind != 0) {
+    if (kernel.kind != 0 && s.robust) {
       kernel.Evaluate(s2, &rho, &weight);
     }
     total_cost += rho;
@@ -176,7 +215,7 @@ void NormalEquations::Linearize(const std::vector<Eigen::Vector3d>& x, const Ker
     }
     const Eigen::Vector3d e = EdgeError(x[U(s.i)], x[U(s.j)], s.z, s.cos_z, s.sin_z, &J_i, &J_j);
     double weight = 1.0;
-    if (kernel.kind != 0) {
+    if (kernel.kind != 0 && s.robust) {
       double rho = 0.0;
       kernel.Evaluate(e.dot(s.information * e), &rho, &weight);
     }
@@ -216,16 +255,23 @@ void NormalEquations::Apply(const std::vector<Eigen::Vector3d>& x, const Eigen::
 GaussNewtonSolver::GaussNewtonSolver(const PoseGraph& graph, const std::vector<bool>& fixed,
                                      GaussNewtonOptions options)
     : options_(std::move(options)),
-      system_(std::make_unique<internal::NormalEquations>(graph, fixed)) {
+      system_(std::make_unique<internal::NormalEquations>(graph, fixed,
+                                                          options_.robust_edges == "all")) {
   GRIDSLAM_CHECK(options_.Validate().ok()) << options_.Validate().error().ToString();
 }
 
 GaussNewtonSolver::~GaussNewtonSolver() = default;
 
+void GaussNewtonSolver::SetRobustKernel(const std::string& kernel, double width) {
+  options_.robust_kernel = kernel;
+  options_.robust_width = width;
+  GRIDSLAM_CHECK(options_.Validate().ok()) << options_.Validate().error().ToString();
+}
+
 LeastSquaresSummary GaussNewtonSolver::Run(PoseGraph& graph, bool levenberg, int max_iterations,
                                            const Callback& callback) {
   internal::Kernel kernel;
-  kernel.kind = options_.robust_kernel == "huber" ? 1 : options_.robust_kernel == "cauchy" ? 2 : 0;
+  kernel.kind = internal::KernelKind(options_.robust_kernel);
   kernel.delta2 = options_.robust_width * options_.robust_width;
   const int limit = max_iterations > 0 ? max_iterations : options_.max_iterations;
 

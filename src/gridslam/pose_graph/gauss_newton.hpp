@@ -26,10 +26,15 @@ struct GaussNewtonOptions {
   int max_iterations = 50;
   /// Stop when an accepted step lowers the cost by less than this fraction of it.
   double relative_tolerance = 1e-6;
-  /// Robust kernel on each edge's chi^2: "none", "huber" or "cauchy".
+  /// Robust kernel on each edge's chi^2: "none", "huber", "cauchy", "dcs" (dynamic covariance
+  /// scaling, Phi = robust_width^2), "geman_mcclure" (scale robust_width^2) or "truncated"
+  /// (min(chi^2, robust_width^2): edges above drop out).
   std::string robust_kernel = "none";
   /// Kernel width: residuals with sqrt(chi^2) above it are down-weighted [sqrt(chi^2)].
   double robust_width = 1.0;
+  /// Edges the kernel applies to: "loops" (loop closures, IsLoopClosure in pose_graph.hpp; the
+  /// odometry chain is trusted) or "all".
+  std::string robust_edges = "loops";
   /// Levenberg-Marquardt: initial damping lambda of H + lambda diag(H) (small: on the shared
   /// graphs larger values only slow LM down from the odometry guess).
   double lm_initial_lambda = 1e-8;
@@ -41,8 +46,10 @@ struct GaussNewtonOptions {
     v("max_iterations", max_iterations, "Iteration limit of a Gauss-Newton/LM run");
     v("relative_tolerance", relative_tolerance,
       "Stop when a step lowers the cost by less than this fraction");
-    v("robust_kernel", robust_kernel, "Robust kernel on edge chi^2: none, huber or cauchy");
+    v("robust_kernel", robust_kernel,
+      "Robust kernel on edge chi^2: none, huber, cauchy, dcs, geman_mcclure or truncated");
     v("robust_width", robust_width, "Robust kernel width [sqrt(chi^2)]");
+    v("robust_edges", robust_edges, "Edges the kernel applies to: loops or all");
     v("lm_initial_lambda", lm_initial_lambda, "LM initial damping of H + lambda diag(H)");
     v("max_step_halvings", max_step_halvings, "Gauss-Newton backtracking steps");
   }
@@ -51,8 +58,13 @@ struct GaussNewtonOptions {
     GRIDSLAM_RETURN_IF_ERROR(
         Require(relative_tolerance >= 0.0, "optimizer.gn.relative_tolerance >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(
-        Require(robust_kernel == "none" || robust_kernel == "huber" || robust_kernel == "cauchy",
-                "optimizer.gn.robust_kernel is none, huber or cauchy"));
+        Require(robust_kernel == "none" || robust_kernel == "huber" || robust_kernel == "cauchy" ||
+                    robust_kernel == "dcs" || robust_kernel == "geman_mcclure" ||
+                    robust_kernel == "truncated",
+                "optimizer.gn.robust_kernel is none, huber, cauchy, dcs, geman_mcclure or "
+                "truncated"));
+    GRIDSLAM_RETURN_IF_ERROR(Require(robust_edges == "loops" || robust_edges == "all",
+                                     "optimizer.gn.robust_edges is loops or all"));
     GRIDSLAM_RETURN_IF_ERROR(Require(robust_width > 0.0, "optimizer.gn.robust_width > 0"));
     GRIDSLAM_RETURN_IF_ERROR(
         Require(lm_initial_lambda > 0.0, "optimizer.gn.lm_initial_lambda > 0"));
@@ -98,6 +110,10 @@ class GaussNewtonSolver {
   /// constructor or have the same structure.
   LeastSquaresSummary Run(PoseGraph& graph, bool levenberg, int max_iterations = 0,
                           const Callback& callback = {});
+
+  /// Changes the kernel and its width between runs (graduated non-convexity, the truncated
+  /// polish); the edges it applies to stay as constructed. Checked like the options.
+  void SetRobustKernel(const std::string& kernel, double width);
 
  private:
   GaussNewtonOptions options_;

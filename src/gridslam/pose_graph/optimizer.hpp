@@ -12,6 +12,7 @@
 #include "gridslam/common/options.hpp"
 #include "gridslam/pose_graph/gauss_newton.hpp"
 #include "gridslam/pose_graph/pose_graph.hpp"
+#include "gridslam/pose_graph/robust_options.hpp"
 #include "gridslam/pose_graph/sgd_options.hpp"
 
 namespace gridslam::pose_graph {
@@ -24,16 +25,28 @@ struct OptimizerOptions {
   /// SGD iterations before the Gauss-Newton polish of "sgd+gn". Two suffice on the shared graphs
   /// (one already gets MIT out of the local minimum where Gauss-Newton alone stops at 770.7).
   int warmup_iterations = 2;
+  /// Initial guess computed first (initialization.hpp): "none" (the graph's poses), "chordal"
+  /// (chordal relaxation of the orientations, then positions) or "lago" (LAGO's regularized
+  /// linear orientations, then positions). With a robust mechanism, the robust stage runs from
+  /// three starts (the graph's poses, the initialization from all edges, and from the edges the
+  /// first run kept) and keeps the lowest truncated cost. sgd+gn skips SGD when this is set.
+  std::string initialization = "none";
   SgdOptions sgd;
   GaussNewtonOptions gn;
+  /// Defence against wrong loop closures (robust_options.hpp); applies to the least-squares
+  /// stage (gn, lm, the polish of sgd+gn).
+  RobustOptions robust;
 
   template <class V>
   void Visit(V& v) {
     v("method", method, "Optimizer: sgd, gn, lm or sgd+gn (SGD, then Gauss-Newton)");
     v("sgd_iterations", sgd_iterations, "Iterations of SGD alone (method sgd)");
     v("warmup_iterations", warmup_iterations, "SGD iterations before Gauss-Newton in sgd+gn");
+    v("initialization", initialization,
+      "Initial guess: none (graph poses), chordal or lago (orientations first, then positions)");
     v.Section("sgd", sgd, "Tree-parameterized SGD (Olson 2006, TORO 2007, Grisetti 2009)");
     v.Section("gn", gn, "Sparse Gauss-Newton / Levenberg-Marquardt");
+    v.Section("robust", robust, "Defence against wrong loop closures (DCS or GNC on loop edges)");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(
@@ -41,7 +54,11 @@ struct OptimizerOptions {
                 "optimizer.method is sgd, gn, lm or sgd+gn"));
     GRIDSLAM_RETURN_IF_ERROR(Require(sgd_iterations >= 0, "optimizer.sgd_iterations >= 0"));
     GRIDSLAM_RETURN_IF_ERROR(Require(warmup_iterations >= 0, "optimizer.warmup_iterations >= 0"));
+    GRIDSLAM_RETURN_IF_ERROR(
+        Require(initialization == "none" || initialization == "chordal" || initialization == "lago",
+                "optimizer.initialization is none, chordal or lago"));
     GRIDSLAM_RETURN_IF_ERROR(sgd.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(robust.Validate());
     return gn.Validate();
   }
 };
@@ -65,6 +82,11 @@ struct OptimizationReport {
   double seconds = 0.0;      ///< Optimization wall time (no file I/O).
   double cpu_seconds = 0.0;  ///< Processor time of the process meanwhile (robust to a busy host).
   int components = 0;        ///< Connected components (each anchored once).
+  bool initialized = false;  ///< The orientation-first initialization ran and succeeded.
+  /// Robust mechanism: loop edges whose final chi^2 exceeds robust.inlier_chi2 (taken as wrong).
+  int rejected_edges = 0;
+  /// chi^2 of the edges not rejected (equals chi2_final without a robust mechanism).
+  double chi2_inliers = 0.0;
 };
 
 using IterationCallback = std::function<void(const IterationRecord&)>;

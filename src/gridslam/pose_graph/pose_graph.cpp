@@ -14,7 +14,8 @@ int PoseGraph::AddVertex(int id, const Pose2& T_map_v, bool fixed) {
   return index;
 }
 
-int PoseGraph::AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information) {
+int PoseGraph::AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information,
+                       EdgeRole role) {
   const int i = IndexOf(from);
   const int j = IndexOf(to);
   GRIDSLAM_CHECK(i >= 0 && j >= 0) << "edge " << from << " -> " << to << " to a missing vertex";
@@ -27,7 +28,7 @@ int PoseGraph::AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix
   GRIDSLAM_CHECK((information.diagonal().array() >= 0.0).all())
       << "edge " << from << " -> " << to << ": negative information diagonal";
   const int index = static_cast<int>(edges_.size());
-  edges_.push_back(Edge{from, to, T_i_j, information});
+  edges_.push_back(Edge{from, to, T_i_j, information, role});
   ends_.push_back({i, j});
   return index;
 }

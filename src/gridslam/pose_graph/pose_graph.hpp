@@ -24,13 +24,32 @@ struct Vertex {
   bool fixed = false;  ///< Held constant by every optimizer (g2o FIX).
 };
 
+/// Whether the optimizer's outlier defence (robust_optimization.md: dynamic covariance scaling or
+/// graduated non-convexity, OptimizerOptions::robust) may down-weight an edge.
+enum class EdgeRole {
+  kAuto,         ///< A loop closure iff the ids are not consecutive (|to - from| != 1).
+  kOdometry,     ///< Trusted: never down-weighted.
+  kLoopClosure,  ///< May be wrong: subject to the robust mechanism.
+};
+
 struct Edge {
   int from = 0;  ///< Vertex id i.
   int to = 0;    ///< Vertex id j.
   Pose2 T_i_j;   ///< Measured pose of j in i's frame.
   /// Information (inverse covariance) in (x, y, theta) order: symmetric, positive semi-definite.
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  EdgeRole role = EdgeRole::kAuto;
 };
+
+/// True if the edge counts as a loop closure (role kLoopClosure, or kAuto with non-consecutive
+/// ids): the edges the robust mechanism may down-weight.
+[[nodiscard]] inline bool IsLoopClosure(const Edge& edge) {
+  if (edge.role != EdgeRole::kAuto) {
+    return edge.role == EdgeRole::kLoopClosure;
+  }
+  const long gap = static_cast<long>(edge.to) - static_cast<long>(edge.from);
+  return gap != 1 && gap != -1;
+}
 
 class PoseGraph {
  public:
@@ -39,7 +58,8 @@ class PoseGraph {
   /// Adds an edge between two existing vertices (checked), returns its index. `information` must
   /// be symmetric (checked to 1e-9 relative) with a non-negative diagonal. Self-loops are checked
   /// errors; several edges between the same pair are allowed (as in g2o).
-  int AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information);
+  int AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information,
+              EdgeRole role = EdgeRole::kAuto);
 
   [[nodiscard]] bool HasVertex(int id) const { return index_.count(id) != 0; }
   /// Index of vertex `id`, or -1 when absent.
@@ -57,6 +77,7 @@ class PoseGraph {
 
   void SetPose(int index, const Pose2& T_map_v) { vertices_[Checked(index)].T_map_v = T_map_v; }
   void SetFixed(int index, bool fixed) { vertices_[Checked(index)].fixed = fixed; }
+  void SetEdgeRole(int edge_index, EdgeRole role) { edges_[CheckedEdge(edge_index)].role = role; }
 
   /// Per vertex index, the indices of the edges touching it (built on demand, kept up to date).
   [[nodiscard]] const std::vector<std::vector<int>>& Incidence() const;
