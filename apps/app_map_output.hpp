@@ -1,4 +1,4 @@
-// Writing what `gridslam map` produces (DESIGN.md §2): map.pgm + map.yaml, map.png,
+// Writing what `gridslam map` produces (docs/design.md §2): map.pgm + map.yaml, map.png,
 // map_graph.png (trajectories and accepted loop closures over the map), trajectory files,
 // graph.g2o, config.yaml and report.json. Only apps/ knows these file names.
 #pragma once

@@ -78,7 +78,8 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
   }
   std::vector<quality::LoopMeasurement> loops;
   for (const pipeline::ClosureRecord& c : result.closures) {
-    if (c.outcome == "accepted" || c.outcome == "joined") {
+    if (c.outcome == pipeline::ClosureOutcome::kAccepted ||
+        c.outcome == pipeline::ClosureOutcome::kJoined) {
       loops.push_back({c.from, c.to, c.T_from_to});
     }
   }

@@ -2,7 +2,7 @@
 // [--descriptor-image distance|obstacle|grid] [--no-verify] [--no-refine] [--negatives N]
 // [--ground-truth FILE] [--max-centre-distance M] [--include-shared] [--no-truth-check]
 // [--seed S] [--pairs FILE]`:
-// the key-map alignment benchmark (DESIGN.md §2, §3.2; benchmark/align_eval.hpp). The flags
+// the key-map alignment benchmark (docs/design.md §2, §3.2; benchmark/align_eval.hpp). The flags
 // override the `description`, `matching.verification`, `loop_closure.refinement` and
 // `align_eval` sections of the configuration. `--pairs FILE` writes one TSV line per tested pair.
 #include <algorithm>
@@ -275,7 +275,8 @@ RunFunction SetupAlignEval(CLI::App& sub, AppContext& /*context*/) {
 }
 
 GRIDSLAM_REGISTER_COMMAND(CommandSpec{
-    "align-eval", "Key-map alignment benchmark: revisits aligned without prior (DESIGN.md 3.2)",
+    "align-eval",
+    "Key-map alignment benchmark: revisits aligned without prior (docs/design.md §3.2)",
     SetupAlignEval});
 
 }  // namespace

@@ -1,6 +1,6 @@
 // `gridslam eval RELATIONS TRAJECTORY [--json] [--min-dt S] [--max-dt S] [--tolerance S]
 // [--no-interpolate] [--max-interpolation-gap S]`: the SLAM benchmark's relation metric
-// (DESIGN.md §2, §3.1) of a trajectory file (plain or TUM). Relation timestamps between two
+// (docs/design.md §2, §3.1) of a trajectory file (plain or TUM). Relation timestamps between two
 // trajectory poses are interpolated (reported as `interpolated`), unless --no-interpolate.
 // Several robots (issue 8): `gridslam eval RELATIONS TRAJ_0 TRAJ_1 ... [--index index.txt]`
 // scores relations within and between robots of a merged map (trajectories in one common

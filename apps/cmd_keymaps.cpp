@@ -1,5 +1,5 @@
 // `gridslam keymaps LOG -o DIR`: runs the front end on a CARMEN log and writes every key map for
-// people to look at (DESIGN.md §1.3-1.4): keymap_NNNN.png (occupied black, free white, unknown
+// people to look at (docs/design.md §1.3-1.4): keymap_NNNN.png (occupied black, free white, unknown
 // grey, +y up), keymap_NNNN_distance.png (the exact Euclidean distance transform of the obstacle
 // cells, clamped at --distance-clamp metres and scaled to 8 bits) and keymaps.txt (one line per
 // key map: id, time, T_odom_key x y theta, number of scans).

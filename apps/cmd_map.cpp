@@ -1,5 +1,5 @@
-// `gridslam map LOG [LOG ...] -o DIR [--config FILE]`: the whole system (DESIGN.md §1, §2). Each
-// LOG is one robot with its own odometry frame and unknown start; their frames are processed
+// `gridslam map LOG [LOG ...] -o DIR [--config FILE]`: the whole system (docs/design.md §1, §2).
+// Each LOG is one robot with its own odometry frame and unknown start; their frames are processed
 // interleaved by time, as a team would deliver them. Writes the map(s), the corrected
 // trajectories, the optimized graph, the effective configuration and a report into DIR.
 #include <algorithm>
@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/map_io.hpp"
 #include "gridslam/io/options_yaml.hpp"
@@ -237,34 +237,33 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   auto last_progress = Clock::now();
   std::optional<Error> snapshot_error;
-  const Status fed =
-      pipeline::InterleaveFrames(std::move(sources), [&](int robot, const Frame& frame) {
-        const auto r = static_cast<std::size_t>(robot);
-        if (!first_time[r]) {
-          first_time[r] = frame.time;
-        }
-        robots[r].duration = ToSeconds(frame.time - *first_time[r]);
-        robots[r].T_base_laser.push_back(frame.T_base_laser);
-        quality_scans.Add(robot, robots[r].scans, frame);
-        ++robots[r].scans;
-        mapper.AddFrame(robot, frame);
-        if (!snapshot_error) {
-          if (const Status s = snapshots.AfterFrame(mapper, frame.time); !s.ok()) {
-            snapshot_error = s.error();
-          }
-        }
-        if (progress && ++processed % 50 == 0 &&
-            (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
-          last_progress = Clock::now();
-          double read = 0.0;
-          for (const recording::RecordingReader& reader : readers) {
-            read += static_cast<double>(reader.BytesRead());
-          }
-          PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
-                        std::chrono::duration<double>(last_progress - start).count(),
-                        mapper.Stats());
-        }
-      });
+  const Status fed = pipeline::InterleaveFrames(std::move(sources), [&](int robot,
+                                                                        const Frame& frame) {
+    const auto r = static_cast<std::size_t>(robot);
+    if (!first_time[r]) {
+      first_time[r] = frame.time;
+    }
+    robots[r].duration = ToSeconds(frame.time - *first_time[r]);
+    robots[r].T_base_laser.push_back(frame.T_base_laser);
+    quality_scans.Add(robot, robots[r].scans, frame);
+    ++robots[r].scans;
+    mapper.AddFrame(robot, frame);
+    if (!snapshot_error) {
+      if (const Status s = snapshots.AfterFrame(mapper, frame.time); !s.ok()) {
+        snapshot_error = s.error();
+      }
+    }
+    if (progress && ++processed % 50 == 0 &&
+        (processed == 50 || Clock::now() - last_progress > std::chrono::milliseconds(500))) {
+      last_progress = Clock::now();
+      double read = 0.0;
+      for (const recording::RecordingReader& reader : readers) {
+        read += static_cast<double>(reader.BytesRead());
+      }
+      PrintProgress(total_bytes > 0.0 ? std::min(1.0, read / total_bytes) : 0.0,
+                    std::chrono::duration<double>(last_progress - start).count(), mapper.Stats());
+    }
+  });
   if (progress) {
     PrintProgress(1.0, std::chrono::duration<double>(Clock::now() - start).count(), mapper.Stats());
     std::fprintf(stderr, "\n");
@@ -313,7 +312,6 @@ int RunMap(const MapArgs& args, AppContext& context) {
   if (args.snapshot_period > 0.0) {
     report["snapshots"] = snapshots.Json();
   }
-  }
   nlohmann::json joins = nlohmann::json::array();
   for (const pipeline::JoinRecord& j : result.joins) {
     joins.push_back({{"robots", {j.robot_a, j.robot_b}},
@@ -325,8 +323,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
-  auto quality = RunSelfCheck(output.value()->path(), result, quality_scans, context.options.quality,
-                              context.options.fusion);
+  auto quality = RunSelfCheck(output.value()->path(), result, quality_scans,
+                              context.options.quality, context.options.fusion);
   if (!quality.ok()) {
     return ReportError(quality.error());
   }

@@ -1,6 +1,6 @@
 // `gridslam odometry LOG -o FILE`: the raw odometry pose of every laser scan of a CARMEN log,
 // in the frame the benchmark relations use (eval.trajectory_frame), so a log's odometry
-// baseline is one `gridslam eval` away (DESIGN.md §2). FILE ending in .tum is written as TUM.
+// baseline is one `gridslam eval` away (docs/design.md §2). FILE ending in .tum is written as TUM.
 #include <cstdio>
 #include <memory>
 

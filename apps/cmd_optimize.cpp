@@ -1,6 +1,6 @@
 // `gridslam optimize GRAPH -o OUT [--method sgd|gn|lm|sgd+gn] [--iterations N] [--json]
-// [--verbose]`: optimizes a g2o or TORO 2-D pose graph (DESIGN.md §2, §3.3) and writes it in the
-// format of OUT's extension (.g2o or .graph). Prints chi^2 (g2o convention) before, after each
+// [--verbose]`: optimizes a g2o or TORO 2-D pose graph (docs/design.md §2, §3.3) and writes it in
+// the format of OUT's extension (.g2o or .graph). Prints chi^2 (g2o convention) before, after each
 // iteration with --verbose, and at the end, with the iteration count and the optimization time
 // (file I/O excluded); --json prints the same as one object. Bad input exits 2 with file:line and
 // writes nothing. For the outlier benchmark (docs/robust_optimization.md), `--add-outliers N

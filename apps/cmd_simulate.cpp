@@ -1,5 +1,5 @@
 // `gridslam simulate --world NAME|FILE.png|FILE.yaml [--resolution R] [--robots N] [--seed S]
-// [--duration S] [--route FILE] -o DIR` (issue 3; DESIGN.md §2): simulated CARMEN logs with
+// [--duration S] [--route FILE] -o DIR` (issue 3; docs/design.md §2): simulated CARMEN logs with
 // exact ground truth. DIR receives, for each robot i: robot_<i>.clf (ODOM + RAWLASER1, in the
 // robot's own odometry frame), robot_<i>.gt.txt (`timestamp x y theta` per scan, world frame),
 // robot_<i>.relations (benchmark relations); with several robots also between.relations,

@@ -1,6 +1,6 @@
 // `gridslam split LOG -n N [--relations FILE] [--overlap S] [--by scans|time] [--max-offset M]
-// --seed S -o DIR` (issue 8; DESIGN.md §2): one log becomes N robots with unknown relative starts.
-// DIR receives robot_<i>.clf (piece i in its own, randomly placed odometry frame, as ODOM +
+// --seed S -o DIR` (issue 8; docs/design.md §2): one log becomes N robots with unknown relative
+// starts. DIR receives robot_<i>.clf (piece i in its own, randomly placed odometry frame, as ODOM +
 // ROBOTLASER1 lines; printed timestamps unchanged), index.txt (`timestamp robot`: every scan with
 // its home robot, in time order) and split.json (the pieces, their scans and the transforms
 // T_new_old, i.e. the answer); with --relations also within.relations, between.relations and

@@ -1,4 +1,4 @@
-// `gridslam track LOG -o DIR`: the front end alone (DESIGN.md §1.2-1.3, §2). Every scan of a
+// `gridslam track LOG -o DIR`: the front end alone (docs/design.md §1.2-1.3, §2). Every scan of a
 // CARMEN log is matched against the rolling local map; DIR receives trajectory.txt and
 // trajectory.tum (one pose per scan, printed timestamps, in the front end's odometry frame),
 // report.json (scans, key maps, fallbacks, time per stage, real-time factor) and config.yaml.

@@ -1,4 +1,4 @@
-// Command registry of the `gridslam` program (DESIGN.md §2). Each subcommand lives in its own
+// Command registry of the `gridslam` program (docs/design.md §2). Each subcommand lives in its own
 // cmd_<name>.cpp and registers itself at start-up with GRIDSLAM_REGISTER_COMMAND; main() parses
 // argv with CLI11, loads the configuration, and runs the chosen subcommand. Only apps/ knows
 // argv and file paths; the library takes option structs.
@@ -28,7 +28,7 @@ struct AppContext {
   [[nodiscard]] recording::RecordingOptions Recording() const { return {options.log, bag}; }
 };
 
-/// Exit codes (DESIGN.md §2).
+/// Exit codes (docs/design.md §2).
 constexpr int kExitOk = 0;
 constexpr int kExitRuntimeError = 1;
 constexpr int kExitBadInput = 2;

@@ -1,4 +1,4 @@
-// Key-map alignment kernels (DESIGN.md §1.5, §3.4): descriptor matching (own brute force vs
+// Key-map alignment kernels (docs/design.md §1.5, §3.4): descriptor matching (own brute force vs
 // OpenCV's BFMatcher), 2-point RANSAC with refinement, grid verification, and the whole Align()
 // for two key maps of 200 features with 30 % true matches (issue target: <= 2 ms per pair).
 #include <random>

@@ -1,4 +1,4 @@
-// Google Benchmark of the pose-graph back end (DESIGN.md §3.4): one SGD iteration and one
+// Google Benchmark of the pose-graph back end (docs/design.md §3.4): one SGD iteration and one
 // Gauss-Newton step (linearize, sparse Cholesky, solve, evaluate) on the shared graphs, from the
 // odometry-chained guess. Graphs come from $GRIDSLAM_DATA/graphs; a missing one is skipped.
 #include <filesystem>

@@ -1,6 +1,6 @@
-// The front end's kernels at the real sizes (DESIGN.md §3.4): one scan match (Gauss-Newton on the
-// distance field, from a prior 5 cm / 1 degree off) and one scan insertion (ray casting into the
-// log-odds window), for 180- and 360-beam scans and 15 m / 20 m windows (301^2 / 401^2 cells),
+// The front end's kernels at the real sizes (docs/design.md §3.4): one scan match (Gauss-Newton on
+// the distance field, from a prior 5 cm / 1 degree off) and one scan insertion (ray casting into
+// the log-odds window), for 180- and 360-beam scans and 15 m / 20 m windows (301^2 / 401^2 cells),
 // plus the incremental distance-field update that follows an insertion. The scans come from the
 // analytic test world of the scan matcher's tests, with 1 cm range noise.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// SURF on key-map distance images (DESIGN.md §1.4; issue target: description <= 10 ms per key
+// SURF on key-map distance images (docs/design.md §1.4; issue target: description <= 10 ms per key
 // map including the distance transform). Synthetic 300 × 300 and 400 × 400 distance images
 // (walls drawn with cv::line, cv::distanceTransform, clamped at 30 px to 8 bit): the project's
 // SURF-64 (integral image, Fast-Hessian, orientation, descriptor, and the stages alone), U-SURF,

@@ -1,7 +1,7 @@
-// Loop closure without a prior (issue 7; DESIGN.md §1.6): a single robot whose estimate is no use
-// for finding its loops (the prior-based candidate search is switched off here) must still close
-// them through the global appearance search, with no false closure wrecking the map: the error
-// of the relations between revisits (at least 30 s apart, where only closed loops help; the
+// Loop closure without a prior (issue 7; docs/design.md §1.6): a single robot whose estimate is no
+// use for finding its loops (the prior-based candidate search is switched off here) must still
+// close them through the global appearance search, with no false closure wrecking the map: the
+// error of the relations between revisits (at least 30 s apart, where only closed loops help; the
 // front end alone is locally near exact in this world) must fall well below that of the same run
 // without loop closure, and no relation may get worse on the whole.
 #include <cstdio>

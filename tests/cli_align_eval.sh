@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI test of `gridslam align-eval` (issue 5; DESIGN.md §3.2): on a simulated lap and a half
+# CLI test of `gridslam align-eval` (issue 5; docs/design.md §3.2): on a simulated lap and a half
 # around the office's south-west block it finds correct pairs and no false accept, prints the
 # promised JSON keys, writes the per-pair file, and exits 2 on bad input.
 set -euo pipefail

@@ -54,14 +54,15 @@ head -c 4096 /dev/urandom | tr -d '\n' > "$tmp/binary.clf"
 printf '\0\0\0\n' >> "$tmp/binary.clf"
 for log in empty comments odom_only unknown; do
   for cmd in track keymaps map; do
-    expect 2 "$log.clf: no laser scan in the log" "$bin" "$cmd" "$tmp/$log.clf" -o "$tmp/$cmd"
+    # The content sniffer or the CARMEN reader refuses it, naming the file.
+    expect 2 "$log.clf: .*\(no laser scan\|not a recording\)" "$bin" "$cmd" "$tmp/$log.clf" -o "$tmp/$cmd"
   done
-  expect 2 "no laser scan" "$bin" odometry "$tmp/$log.clf" -o "$tmp/odo.txt"
-  expect 2 "no laser scan" "$bin" split "$tmp/$log.clf" -n 2 -o "$tmp/split"
+  expect 2 "no laser scan\|not a recording" "$bin" odometry "$tmp/$log.clf" -o "$tmp/odo.txt"
+  expect 2 "no laser scan\|not a recording" "$bin" split "$tmp/$log.clf" -n 2 -o "$tmp/split"
 done
 expect 2 "unknown types (GPSNMEA, NEFF)" "$bin" map "$tmp/unknown.clf" -o "$tmp/map"
 for cmd in track keymaps map; do
-  expect 2 "binary.clf:1: a NUL byte" "$bin" "$cmd" "$tmp/binary.clf" -o "$tmp/$cmd"
+  expect 2 "binary.clf\(:1: a NUL byte\|: not a recording.*binary data\)" "$bin" "$cmd" "$tmp/binary.clf" -o "$tmp/$cmd"
 done
 unchanged "degenerate logs"
 [ ! -e "$tmp/odo.txt" ] && [ ! -e "$tmp/split" ] || fail "a failed run created its output"

@@ -47,7 +47,7 @@ printf 'fusion:\n  resolution: 0.2\n' > "$tmp/mine.yaml"
 grep -q "^  resolution: 0.3$" "$tmp/c.yaml" || fail "--set does not win over --config"
 "$bin" --set fusion.resolution=0.2 --set fusion.resolution=0.4 --print-config > "$tmp/c.yaml"
 grep -q "^  resolution: 0.4$" "$tmp/c.yaml" || fail "the last --set does not win"
-expect 2 "\-\-set fusion.resolution=-1: invalid option: fusion.resolution > 0" \
+expect 2 "\-\-set fusion.resolution=-1: invalid option: fusion.resolution in \[0.005, 10\] m" \
   "$bin" --set fusion.resolution=-1 --print-config
 expect 2 "\-\-set fusion.resolutoin=1: unknown option 'fusion.resolutoin'" \
   "$bin" --set fusion.resolutoin=1 --print-config
@@ -56,7 +56,7 @@ expect 2 "cannot read a value" "$bin" --set fusion.resolution=abc --print-config
 
 # Validation errors name the file and the line.
 printf 'fusion: {resolution: -1}\n' > "$tmp/bad.yaml"
-expect 2 "bad.yaml:1: invalid option: fusion.resolution > 0" "$bin" --config "$tmp/bad.yaml" --print-config
+expect 2 "bad.yaml:1: invalid option: fusion.resolution in \[0.005, 10\] m" "$bin" --config "$tmp/bad.yaml" --print-config
 printf 'log:\n  lenient: false\nloop_closure:\n  refinement:\n    max_points: 0\n' > "$tmp/bad2.yaml"
 expect 2 "bad2.yaml:5: invalid option: refinement.max_points" "$bin" --config "$tmp/bad2.yaml" --print-config
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI test of `gridslam optimize` (DESIGN.md §2): g2o and TORO in and out, --json fields, chi^2
+# CLI test of `gridslam optimize` (docs/design.md §2): g2o and TORO in and out, --json fields, chi^2
 # lowered, and bad input exiting 2 with file:line and no output written.
 set -euo pipefail
 bin="$1"

@@ -41,7 +41,7 @@ expect_refused "looks like a PNG image" "$bin" map "$tmp/map.png" -o "$tmp/out"
 expect_refused "looks like a PGM image" "$bin" map "$tmp/map.pgm" -o "$tmp/out"
 expect_refused "looks like a relations file" "$bin" map "$tmp/intel.relations" -o "$tmp/out"
 expect_refused "looks like an empty file" "$bin" map "$tmp/empty.clf" -o "$tmp/out"
-expect_refused "has no laser scans" "$bin" map "$tmp/odom_only.clf" -o "$tmp/out"
+expect_refused "no laser scan" "$bin" map "$tmp/odom_only.clf" -o "$tmp/out"
 expect_refused "looks like a g2o pose graph" "$bin" odometry "$tmp/graph.g2o" -o "$tmp/out"
 expect_refused "looks like a g2o pose graph" "$bin" info "$tmp/graph.g2o"
 

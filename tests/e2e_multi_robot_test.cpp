@@ -1,7 +1,7 @@
-// End to end, several robots (issue 8; DESIGN.md §1.9): robots with unknown relative starts are
-// mapped together by the Mapper, which must join them into one map by itself (appearance search,
-// verified and mutually consistent matches), and the benchmark relations between robots, which
-// only a correct join can satisfy, must score about as well as those within each robot. Two
+// End to end, several robots (issue 8; docs/design.md §1.9): robots with unknown relative starts
+// are mapped together by the Mapper, which must join them into one map by itself (appearance
+// search, verified and mutually consistent matches), and the benchmark relations between robots,
+// which only a correct join can satisfy, must score about as well as those within each robot. Two
 // (400 s) and three (the whole tour) simulated robots in the office world, whose repeated rooms
 // and symmetric corridors invite false joins, and the start of the intel log cut into two
 // robots by `gridslam split`'s code (log_split.hpp), written as logs and read back.

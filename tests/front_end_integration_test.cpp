@@ -1,5 +1,5 @@
-// The front end on a long part of the real intel log (FORMATS.md §1.5) against the benchmark's
-// relations (DESIGN.md §3.1): with the default configuration it must beat the odometry on the
+// The front end on a long part of the real intel log (docs/formats.md §1.5) against the benchmark's
+// relations (docs/design.md §3.1): with the default configuration it must beat the odometry on the
 // local relations (t2 - t1 < 10 s), in translation and clearly in rotation, without fallbacks.
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ TEST(FrontEndIntegration, BeatsOdometryOnIntelsLocalRelations) {
   ASSERT_EQ(ours.used, theirs.used);
   EXPECT_LT(ours.translation.mean, theirs.translation.mean);
   EXPECT_LT(ours.rotation_deg.mean, 0.5 * theirs.rotation_deg.mean);
-  // The targets of the front end (DESIGN.md §1.2), with a margin for platform differences.
+  // The targets of the front end (docs/design.md §1.2), with a margin for platform differences.
   EXPECT_LT(ours.translation.mean, 0.025);
   EXPECT_LT(ours.rotation_deg.mean, 0.4);
   RecordProperty("front_end_translation_mean", std::to_string(ours.translation.mean));

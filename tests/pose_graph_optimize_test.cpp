@@ -1,4 +1,4 @@
-// Integration test of the pose-graph back end on the shared graphs (DESIGN.md §3.3): from the
+// Integration test of the pose-graph back end on the shared graphs (docs/design.md §3.3): from the
 // odometry-chained guess, SGD lowers chi^2 by orders of magnitude, Gauss-Newton and LM never raise
 // it, sgd+gn ends at least as low as Gauss-Newton alone, and the TORO graphs optimize and
 // round-trip. No figures of a particular dataset are hard-coded (docs/optimizer.md has them).

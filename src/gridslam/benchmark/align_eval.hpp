@@ -1,4 +1,4 @@
-// The key-map alignment benchmark (DESIGN.md §3.2; issue 5): how well two key maps are aligned
+// The key-map alignment benchmark (docs/design.md §3.2; issue 5): how well two key maps are aligned
 // with no initial guess (description/keymap_describer.hpp, matching/align.hpp), measured on
 // loop closures with known answers. The front end runs over a log; the revisits among the
 // benchmark's relations give positive pairs and far-apart key maps give negative pairs

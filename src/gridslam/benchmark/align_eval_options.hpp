@@ -1,5 +1,5 @@
-// Options of the key-map alignment benchmark (DESIGN.md §3.2; issue 5): which relations of a log
-// become test pairs, when an alignment counts as correct, and how negative pairs (no correct
+// Options of the key-map alignment benchmark (docs/design.md §3.2; issue 5): which relations of a
+// log become test pairs, when an alignment counts as correct, and how negative pairs (no correct
 // answer exists) are drawn. Header-only so that SlamOptions can hold it without a link
 // dependency.
 #pragma once

@@ -1,5 +1,5 @@
-// What the alignment benchmark (DESIGN.md §3.2) needs to know of a front-end run: the front end
-// (scan_matching/front_end.hpp) is run over a log's frames and, for every key map, its frame
+// What the alignment benchmark (docs/design.md §3.2) needs to know of a front-end run: the front
+// end (scan_matching/front_end.hpp) is run over a log's frames and, for every key map, its frame
 // T_odom_key, its window in the odometry frame and the range of scans it holds are recorded,
 // together with every scan's estimated pose. The key maps themselves are handed to a callback
 // and not kept, so a long log costs little memory; the front end is deterministic, so a second

@@ -1,4 +1,4 @@
-// Test pairs of the key-map alignment benchmark (DESIGN.md §3.2; issue 5).
+// Test pairs of the key-map alignment benchmark (docs/design.md §3.2; issue 5).
 //
 // Positive pairs come from the benchmark's relations (Kümmerle et al. 2009): a relation whose
 // scans are more than min_time_gap apart is a revisit with a known answer. Its key maps a (holding

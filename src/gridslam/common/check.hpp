@@ -1,5 +1,5 @@
-// Fatal invariant checks for programming errors (STYLE.md §8, kind 2): a broken invariant aborts
-// with file, line and message in every build type, like Cartographer's CHECK.
+// Fatal invariant checks for programming errors (docs/style.md §8, kind 2): a broken invariant
+// aborts with file, line and message in every build type, like Cartographer's CHECK.
 //
 //   GRIDSLAM_CHECK(resolution > 0.0) << "resolution was " << resolution;
 #pragma once

@@ -1,5 +1,5 @@
-// Thin logging shim over spdlog (STYLE.md §10). The library logs through these macros and never
-// configures sinks or levels; the apps do. No logging inside per-beam or per-cell loops.
+// Thin logging shim over spdlog (docs/style.md §10). The library logs through these macros and
+// never configures sinks or levels; the apps do. No logging inside per-beam or per-cell loops.
 #pragma once
 
 #include <spdlog/spdlog.h>

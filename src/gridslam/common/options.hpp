@@ -1,5 +1,5 @@
-// The options convention (STYLE.md §9). Every component keeps its parameters in one plain struct
-// with documented defaults and SI units, plus two members:
+// The options convention (docs/style.md §9). Every component keeps its parameters in one plain
+// struct with documented defaults and SI units, plus two members:
 //
 //   template <class V> void Visit(V& v) {
 //     v("max_range", max_range, "Readings at or beyond this are no-returns [m]");

@@ -1,5 +1,5 @@
-// Status and Result<T>: expected, data-dependent failures as values (STYLE.md §8, kind 1), shaped
-// like std::expected / absl::Status, which C++20 with libstdc++ 12 lacks. An error carries a
+// Status and Result<T>: expected, data-dependent failures as values (docs/style.md §8, kind 1),
+// shaped like std::expected / absl::Status, which C++20 with libstdc++ 12 lacks. An error carries a
 // message and, for input errors, the file and line number it refers to.
 #pragma once
 

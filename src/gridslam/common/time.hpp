@@ -1,5 +1,5 @@
-// Strong time type (STYLE.md §7, after Cartographer's common/time.h): int64 nanoseconds since the
-// Unix epoch (or since a log's own relative time base). CARMEN's decimal seconds are parsed
+// Strong time type (docs/style.md §7, after Cartographer's common/time.h): int64 nanoseconds since
+// the Unix epoch (or since a log's own relative time base). CARMEN's decimal seconds are parsed
 // exactly, digit by digit, so a printed timestamp survives a read/write round trip unchanged.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Options of the key-map describer (DESIGN.md §1.4; paper reconstruction §1.5.1).
+// Options of the key-map describer (docs/design.md §1.4; docs/method.md §1.5.1).
 #pragma once
 
 #include <string>
@@ -17,7 +17,7 @@ struct DescriptionOptions {
   /// Image the descriptors are computed on: "distance", "obstacle" (the binary obstacle image,
   /// as the authors' code does) or "grid".
   std::string descriptor_image = "distance";
-  /// Distances are mapped to 8 bits as min(d, clamp) / clamp * 255 [m] (DESIGN.md §1.4).
+  /// Distances are mapped to 8 bits as min(d, clamp) / clamp * 255 [m] (docs/design.md §1.4).
   double distance_clamp = 2.0;
   /// The paper's per-map min-max normalization instead of the fixed clamp.
   bool minmax_normalization = false;

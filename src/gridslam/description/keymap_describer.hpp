@@ -1,4 +1,4 @@
-// Key-map description (DESIGN.md §1.4; paper reconstruction §1.5.1): the distance transform of a
+// Key-map description (docs/design.md §1.4; docs/method.md §1.5.1): the distance transform of a
 // key map's grid (distance to the nearest obstacle) is treated as an image and SURF keypoints and
 // descriptors are taken from it; the keypoints are converted to metres in the key map's own frame
 // at once, so every later step (matching/align.hpp) works in metres. The describer also keeps

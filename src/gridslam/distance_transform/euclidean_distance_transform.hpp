@@ -1,12 +1,12 @@
 // Exact Euclidean distance transform of a binary grid after Felzenszwalb & Huttenlocher,
-// "Distance transforms of sampled functions", Theory of Computing 8(19):415-428, 2012 (paper
-// reconstruction §3). The squared distance D(p) = min_q |p - q|^2 over source cells q is separable:
-// a pass along every column (distance to the nearest source in the column, two linear scans since
-// the input is binary) followed by the 1-D lower envelope of parabolas along every row. O(cells),
-// exact, and it also yields the nearest source of every cell (the "label" / Voronoi map) that the
-// scan matcher uses for correspondences. In the gridslam pipeline the sources are obstacle cells
-// (DESIGN.md §1.4): free and unknown cells are not sources. OpenCV's DIST_MASK_PRECISE computes the
-// same distances (bench/bench_distance_transform.cpp compares the two).
+// "Distance transforms of sampled functions", Theory of Computing 8(19):415-428, 2012
+// (docs/method.md §3). The squared distance D(p) = min_q |p - q|^2 over source cells q is
+// separable: a pass along every column (distance to the nearest source in the column, two linear
+// scans since the input is binary) followed by the 1-D lower envelope of parabolas along every row.
+// O(cells), exact, and it also yields the nearest source of every cell (the "label" / Voronoi map)
+// that the scan matcher uses for correspondences. In the gridslam pipeline the sources are obstacle
+// cells (docs/design.md §1.4): free and unknown cells are not sources. OpenCV's DIST_MASK_PRECISE
+// computes the same distances (bench/bench_distance_transform.cpp compares the two).
 #pragma once
 
 #include <cstdint>
@@ -53,7 +53,7 @@ cv::Mat DistanceTransformCells(const cv::Mat& image);
 /// with the same MapLimits; +inf where there is no source.
 Grid2D<float> DistanceTransformMetres(const Grid2D<std::uint8_t>& is_source);
 
-/// Maps distances to 8 bits with a fixed clamp (DESIGN.md §1.4): min(d, d_max) / d_max * 255,
+/// Maps distances to 8 bits with a fixed clamp (docs/design.md §1.4): min(d, d_max) / d_max * 255,
 /// d and d_max in the same unit. d_max > 0.
 cv::Mat DistanceToImage(const cv::Mat& distance, double d_max);
 

@@ -1,4 +1,4 @@
-// Options of the benchmark relation metric (DESIGN.md §3.1; FORMATS.md §4).
+// Options of the benchmark relation metric (docs/design.md §3.1; docs/formats.md §4).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// A ground-truth relation of the SLAM benchmark (Kümmerle et al. 2009; FORMATS.md §4): the
+// A ground-truth relation of the SLAM benchmark (Kümmerle et al. 2009; docs/formats.md §4): the
 // motion of the robot from its pose at t1 to its pose at t2, expressed in the frame at t1.
 #pragma once
 

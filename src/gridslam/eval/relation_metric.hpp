@@ -1,5 +1,5 @@
-// The SLAM benchmark's relation metric (Kümmerle et al. 2009; DESIGN.md §3.1, FORMATS.md §4).
-// For each relation (t1, t2, δ*) the estimate's poses X_t1, X_t2 are the trajectory poses with
+// The SLAM benchmark's relation metric (Kümmerle et al. 2009; docs/design.md §3.1, docs/formats.md
+// §4). For each relation (t1, t2, δ*) the estimate's poses X_t1, X_t2 are the trajectory poses with
 // the nearest timestamps (within EvalOptions::tolerance) or, failing that and if
 // EvalOptions::interpolate, interpolated between the poses before and after (at most
 // max_interpolation_gap apart; counted in `interpolated`), δ = X_t1⁻¹ X_t2, and the error is

@@ -1,4 +1,4 @@
-// Fast-Hessian keypoint detector of SURF (Bay et al. 2008, §3; reconstruction.md §2.2). The
+// Fast-Hessian keypoint detector of SURF (Bay et al. 2008, §3; docs/method.md §2.2). The
 // Gaussian second derivatives are approximated by box filters evaluated on the integral image:
 // Dyy is three stacked lobes (weights +1, −2, +1) of (2l−1) × l pixels, Dxx its transpose, Dxy
 // four l × l lobes around a one-pixel cross, for filter size L = 3l. Each response is divided by

@@ -10,7 +10,7 @@
 namespace gridslam::features {
 namespace {
 
-// Kernels written out pixel by pixel from the lobe description of reconstruction.md §2.2
+// Kernels written out pixel by pixel from the lobe description of docs/method.md §2.2
 // (independent of the integral-image code): Dyy = three stacked (2l−1) × l lobes +1, −2, +1; Dxx
 // its transpose; Dxy four l × l lobes around a one-pixel cross, + top-left and bottom-right.
 struct Kernels {
@@ -60,7 +60,7 @@ TEST(FastHessianTest, FilterSizesAreThePapers) {
 }
 
 TEST(FastHessianTest, NineByNineKernelMatchesOpenCvTable) {
-  // OpenCV's 9-grid lobes [x1, y1, x2, y2) with weights (reconstruction.md §2.2).
+  // OpenCV's 9-grid lobes [x1, y1, x2, y2) with weights (docs/method.md §2.2).
   const int dyy[3][5] = {{2, 0, 7, 3, 1}, {2, 3, 7, 6, -2}, {2, 6, 7, 9, 1}};
   const int dxy[4][5] = {{1, 1, 4, 4, 1}, {5, 1, 8, 4, -1}, {1, 5, 4, 8, -1}, {5, 5, 8, 8, 1}};
   cv::Mat expected_yy = cv::Mat::zeros(9, 9, CV_32F);

@@ -1,5 +1,5 @@
 // Integral image (summed-area table) of an 8-bit image, the basis of SURF's constant-time box
-// filters (Bay et al. 2008, §2.1, Eq. (1); reconstruction.md §2.1). The table has (H+1)·(W+1)
+// filters (Bay et al. 2008, §2.1, Eq. (1); docs/method.md §2.1). The table has (H+1)·(W+1)
 // 32-bit entries with a zero first row and column: II(x, y) = Σ_{i<x, j<y} I(i, j), so the sum
 // over the half-open box [x0, x1) × [y0, y1) takes four look-ups.
 #pragma once

@@ -1,4 +1,4 @@
-// SURF orientation assignment and descriptor (Bay et al. 2008, §4.1–4.2; reconstruction.md
+// SURF orientation assignment and descriptor (Bay et al. 2008, §4.1–4.2; docs/method.md
 // §2.3–2.5), sampled on the integral image. Orientation: Haar wavelet responses of side 4s at
 // the points of a grid of spacing s within radius 6s, weighted by a Gaussian (σ = 2s) centred on
 // the keypoint; a window of angular width π/3 slides around the circle of (dx, dy) points (every

@@ -1,8 +1,8 @@
-// SURF (Bay et al. 2008) as a cv::Feature2D, so that the key-map description pipeline (DESIGN.md
-// §1.4) can swap in OpenCV's SIFT, ORB or AKAZE through the same interface (CreateDetector).
-// detect() runs the Fast-Hessian detector (fast_hessian.hpp) and, unless upright, assigns each
-// keypoint's orientation; compute() describes given keypoints (surf_descriptor.hpp), using a
-// keypoint's angle when it is >= 0 and assigning one otherwise. Keypoints follow
+// SURF (Bay et al. 2008) as a cv::Feature2D, so that the key-map description pipeline
+// (docs/design.md §1.4) can swap in OpenCV's SIFT, ORB or AKAZE through the same interface
+// (CreateDetector). detect() runs the Fast-Hessian detector (fast_hessian.hpp) and, unless upright,
+// assigns each keypoint's orientation; compute() describes given keypoints (surf_descriptor.hpp),
+// using a keypoint's angle when it is >= 0 and assigning one otherwise. Keypoints follow
 // fast_hessian.hpp: size = filter size L (s = 1.2·L/9), class_id = sign of the Laplacian (±1),
 // angle in degrees [0, 360) clockwise in the image (−1 for U-SURF). Descriptors are CV_32F rows
 // of 64 (or, extended, 128) unit-norm values, compared with NORM_L2. Input images are CV_8UC1;

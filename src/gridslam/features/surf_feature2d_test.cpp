@@ -90,7 +90,8 @@ TEST(SurfFeature2DTest, DetectThenComputeEqualsDetectAndCompute) {
   ASSERT_EQ(bare.size(), separate.size());
   EXPECT_EQ(cv::norm(d_bare, d_together, cv::NORM_INF), 0.0);
 
-  // Descriptors on another image (the binary obstacle image, DESIGN.md §1.4) at the same keypoints.
+  // Descriptors on another image (the binary obstacle image, docs/design.md §1.4) at the same
+  // keypoints.
   const cv::Mat obstacles = RenderObstacleImage(MakeSyntheticWalls(260, 2), 260);
   std::vector<cv::KeyPoint> on_grid = separate;
   cv::Mat d_grid;

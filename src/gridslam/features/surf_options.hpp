@@ -1,5 +1,5 @@
 // Options of the project's SURF detector and descriptor (Bay, Ess, Tuytelaars, Van Gool,
-// "Speeded-Up Robust Features (SURF)", CVIU 110(3), 2008; reconstruction.md §2; DESIGN.md §1.4).
+// "Speeded-Up Robust Features (SURF)", CVIU 110(3), 2008; docs/method.md §2; docs/design.md §1.4).
 // The scale space is the paper's: octave o (0-based) holds the box filters of size L =
 // 3·(2^(o+1)·(i+1) + 1), i = 0 .. layers_per_octave−1 (9-15-21-27 / 15-27-39-51 / 27-51-75-99 /
 // 51-99-147-195), sampled every initial_step·2^o pixels. Hessian responses are normalised by the

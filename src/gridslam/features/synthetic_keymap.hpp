@@ -1,6 +1,6 @@
 // Synthetic key-map images for the SURF tests and benchmarks: a random office-like floor of wall
 // segments (walls with door gaps, furniture, pillars), drawn 1 px wide into a binary obstacle
-// image (obstacles 0, everything else 255, DESIGN.md §1.4) and turned into the 8-bit distance
+// image (obstacles 0, everything else 255, docs/design.md §1.4) and turned into the 8-bit distance
 // image the description uses: min(d, clamp) / clamp · 255 of the exact Euclidean distance d to the
 // nearest obstacle (cv::distanceTransform, DIST_L2, DIST_MASK_PRECISE). Deterministic per seed.
 #pragma once

@@ -1,4 +1,4 @@
-// Fusion of the key maps into one global occupancy grid (DESIGN.md §1.8; paper reconstruction
+// Fusion of the key maps into one global occupancy grid (docs/design.md §1.8; docs/method.md
 // §1.5.7). Two methods: re-inserting every scan at its corrected pose into a log-odds grid (the
 // sharpest map, the default), and the paper's nearest-key-map (Voronoi) assignment, where each
 // global cell takes its value from the key map whose optimized centre is nearest and that has

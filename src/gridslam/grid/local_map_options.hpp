@@ -1,4 +1,4 @@
-// Options of the rolling-window local occupancy map (DESIGN.md §1.3; paper reconstruction §1.4).
+// Options of the rolling-window local occupancy map (docs/design.md §1.3; docs/method.md §1.4).
 // Probabilities are converted to log-odds once; every length is in metres.
 #pragma once
 

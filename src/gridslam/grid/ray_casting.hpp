@@ -1,4 +1,4 @@
-// Cell traversal of laser rays on a grid (DESIGN.md §1.3): Bresenham's line between two cells,
+// Cell traversal of laser rays on a grid (docs/design.md §1.3): Bresenham's line between two cells,
 // after clipping the metric segment to the grid's rectangle (Liang-Barsky), so a 30 m reading in a
 // 15 m window costs only the cells inside the window. Used by the occupancy update to clear the
 // cells a beam passed through; the beam's end cell is handled by the caller (marked only for real

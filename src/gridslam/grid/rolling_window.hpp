@@ -1,4 +1,4 @@
-// The rolling-window local occupancy map of the front end (DESIGN.md §1.3; paper reconstruction
+// The rolling-window local occupancy map of the front end (docs/design.md §1.3; docs/method.md
 // §1.4): a log-odds grid (0.05 m cells; 25 m side by default, key maps are its central 15 m)
 // axis-aligned with the front end's odometry frame and centred on the robot. When the robot is
 // more than `shift_distance` from the centre along x or y, the window moves by the whole offset
@@ -52,7 +52,7 @@ class RollingWindow {
   [[nodiscard]] const LocalMapOptions& Options() const { return options_; }
   /// Geometry in the odometry frame; the origin changes only in whole cells.
   [[nodiscard]] const MapLimits& Limits() const { return log_odds_.Limits(); }
-  /// Metric centre of the centre cell (the key-map frame's origin, DESIGN.md §1.3).
+  /// Metric centre of the centre cell (the key-map frame's origin, docs/design.md §1.3).
   [[nodiscard]] Eigen::Vector2d Centre() const;
   [[nodiscard]] const Grid2D<float>& LogOdds() const { return log_odds_; }
   /// 1 where the cell is an obstacle (probability > occupied_probability), else 0.

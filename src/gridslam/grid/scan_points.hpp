@@ -1,8 +1,8 @@
 // A laser scan turned into what the local map and the scan matcher consume: the returns as points
 // in the robot (base) frame, each with a surface normal estimated by PCA over its neighbouring
-// beams (as PL-ICP's orientation estimate, paper reconstruction §6 step 1), the laser's position,
+// beams (as PL-ICP's orientation estimate, docs/method.md §6 step 1), the laser's position,
 // and the directions of the no-return beams (which may clear free space but never mark
-// obstacles, DESIGN.md §1.1). Works for any beam count and per-scan start angle (interleaved
+// obstacles, docs/design.md §1.1). Works for any beam count and per-scan start angle (interleaved
 // scanners) and applies the laser's mounting on the robot.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Writing an output file all or nothing: the text goes to a temporary file beside the target,
 // which is renamed over it only once everything was written and flushed, so a failed command
-// never leaves a half-written file (DESIGN.md §2).
+// never leaves a half-written file (docs/design.md §2).
 #pragma once
 
 #include <string>

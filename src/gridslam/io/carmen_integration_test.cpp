@@ -1,4 +1,4 @@
-// The project's four real logs (FORMATS.md §1.5) read with the right scan counts, beam counts
+// The project's four real logs (docs/formats.md §1.5) read with the right scan counts, beam counts
 // and angles; relation timestamps match scan timestamps exactly; intel's timestamp repair lowers
 // the odometry error on short relations.
 #include <cmath>

@@ -1,4 +1,4 @@
-// Options of the CARMEN log reader (FORMATS.md §1).
+// Options of the CARMEN log reader (docs/formats.md §1).
 #pragma once
 
 #include <vector>
@@ -8,7 +8,7 @@
 namespace gridslam::io {
 
 struct CarmenOptions {
-  /// Range values that mean "no return" in the project's logs (FORMATS.md §1.5).
+  /// Range values that mean "no return" in the project's logs (docs/formats.md §1.5).
   std::vector<double> no_return_values = {81.83, 81.91};
   /// Readings at or beyond this are no-returns, whatever the line's maximum_range says [m].
   double max_usable_range = 80.0;

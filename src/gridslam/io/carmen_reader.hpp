@@ -1,4 +1,4 @@
-// Streaming reader of CARMEN laser logs (FORMATS.md §1; DESIGN.md §1.1): FLASER, RLASER,
+// Streaming reader of CARMEN laser logs (docs/formats.md §1; docs/design.md §1.1): FLASER, RLASER,
 // RAWLASER1..4, ROBOTLASER1, ODOM, PARAM, TRUEPOS and comments, plain or gzip-compressed. Lines
 // are read in file order through a bounded look-ahead buffer, so memory does not grow with the
 // log length; laser lines without a pose (RAWLASER*) get the odometry interpolated from the ODOM

@@ -1,4 +1,4 @@
-// Writes CARMEN logs (FORMATS.md §1) the way CARMEN's logger does (`carmen/src/logger/
+// Writes CARMEN logs (docs/formats.md §1) the way CARMEN's logger does (`carmen/src/logger/
 // writelog.c`): the logger's header comments, one message per line, every message followed by
 // `ipc_timestamp ipc_hostname logger_timestamp` (timestamps with 6 decimals, the logger time
 // relative to the log's start), ranges with %.2f and every other number with %f. Laser frames

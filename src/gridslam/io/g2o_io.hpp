@@ -1,4 +1,4 @@
-// Reading and writing 2-D pose graphs in g2o's text format (FORMATS.md §2; g2o's VertexSE2 /
+// Reading and writing 2-D pose graphs in g2o's text format (docs/formats.md §2; g2o's VertexSE2 /
 // EdgeSE2 read/write and OptimizableGraph::load): `VERTEX_SE2 id x y theta`,
 // `EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33` (information upper triangle, row-major,
 // (x, y, theta) order), `FIX id...`, '#' comments. Other tags are skipped with one warning per tag.

@@ -1,4 +1,4 @@
-// ROS map_server maps (FORMATS.md §5): a YAML file (image, resolution, origin, negate,
+// ROS map_server maps (docs/formats.md §5): a YAML file (image, resolution, origin, negate,
 // occupied_thresh, free_thresh, mode) beside an image. Written exactly as map_saver writes them:
 // trinary values 254 free / 0 occupied / 205 unknown (free when 0 <= v <= 25, occupied when
 // v >= 65), `negate: 0`, `occupied_thresh: 0.65`, `free_thresh: 0.196`, binary PGM (P5) or PNG.

@@ -1,5 +1,5 @@
-// Relations files of the SLAM benchmark (Kümmerle et al. 2009; FORMATS.md §4): one relation per
-// line, "t1 t2 x y z roll pitch yaw", the motion from the robot's pose at t1 to its pose at t2
+// Relations files of the SLAM benchmark (Kümmerle et al. 2009; docs/formats.md §4): one relation
+// per line, "t1 t2 x y z roll pitch yaw", the motion from the robot's pose at t1 to its pose at t2
 // expressed in the frame at t1 (z, roll, pitch are 0 in 2D and ignored on reading). Lines
 // starting with '#' and blank lines are skipped.
 #pragma once

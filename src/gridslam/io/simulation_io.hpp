@@ -1,4 +1,4 @@
-// Small text formats around the simulator and multi-robot runs (DESIGN.md §2): the scan index
+// Small text formats around the simulator and multi-robot runs (docs/design.md §2): the scan index
 // `index.txt` (one line `timestamp robot` per laser scan of several robots' logs, in time order,
 // timestamps with 6 decimals as in the logs) and route waypoint files (one `x y` line per
 // waypoint in metres, world frame; '#' comments and blank lines skipped).

@@ -1,4 +1,4 @@
-// Repair of CARMEN timestamps printed without zero padding (FORMATS.md §1.5, intel): a time of
+// Repair of CARMEN timestamps printed without zero padding (docs/formats.md §1.5, intel): a time of
 // 976052864.045862 s was printed as "976052864.45862" (the microseconds without their leading
 // zero) and read back as .458620. Each printed time therefore stands for one of several
 // candidates (its fraction with k of its trailing zeros dropped, read as microseconds). A log with

@@ -29,7 +29,7 @@ Result<pose_graph::PoseGraph> ParseToro(const std::string& text, const std::stri
   syntax.information = [covariance = options.covariance](const std::string& tag, const double* v,
                                                          const std::string& at_file, long line,
                                                          Eigen::Matrix3d& information) -> Status {
-    // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (FORMATS.md §3).
+    // TORO order ff fs ss rr fr sr = I11 I12 I22 I33 I13 I23 (docs/formats.md §3).
     Eigen::Matrix3d m;
     m << v[0], v[1], v[4], v[1], v[2], v[5], v[4], v[5], v[3];
     // GTSAM's sanity check: a zero on the diagonal means another order (or a bad file).

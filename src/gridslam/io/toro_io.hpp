@@ -1,4 +1,4 @@
-// Reading and writing 2-D pose graphs in TORO's text format (FORMATS.md §3; TORO's
+// Reading and writing 2-D pose graphs in TORO's text format (docs/formats.md §3; TORO's
 // TreePoseGraph2::load/save): `VERTEX2 id x y theta` (or `VERTEX`) and
 // `EDGE2 id1 id2 dx dy dtheta I_ff I_fs I_ss I_rr I_fr I_sr` (or `EDGE`), with the information in
 // TORO's order (f = forward x, s = sideward y, r = rotation) converted here, and only here, to

@@ -12,7 +12,7 @@ namespace {
 using pose_graph::PoseGraph;
 
 TEST(ToroIoTest, ConvertsTheInformationOrder) {
-  // FORMATS.md §3: the same edge in both formats, I13 = 10 and I23 = 20.
+  // docs/formats.md §3: the same edge in both formats, I13 = 10 and I23 = 20.
   const auto toro =
       ParseToro("VERTEX2 0 0 0 0\nVERTEX 1 1 0 0\nEDGE2 0 1 1.0 0.0 0.05236 500 0 500 5000 10 20\n",
                 "mem.graph");

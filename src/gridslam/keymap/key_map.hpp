@@ -1,4 +1,4 @@
-// Key maps (DESIGN.md §1.3; paper reconstruction §1.4): snapshots of the front end's rolling
+// Key maps (docs/design.md §1.3; docs/method.md §1.4): snapshots of the front end's rolling
 // local map that become the vertices of the pose graph. A key map's frame is the window centre
 // with yaw 0 in the odometry frame (`T_odom_key`); it holds the log-odds grid with MapLimits in
 // that frame, and the scans it added to the map with their robot poses in that frame, so that a
@@ -38,7 +38,7 @@ OccupancyImage ToOccupancyImage(const Grid2D<float>& log_odds, double occupied_p
                                 double free_probability);
 
 /// 1 where the probability exceeds `occupied_probability` (the sources of the distance
-/// transform, DESIGN.md §1.4), else 0.
+/// transform, docs/design.md §1.4), else 0.
 Grid2D<std::uint8_t> ObstacleMask(const Grid2D<float>& log_odds, double occupied_probability);
 
 }  // namespace gridslam::keymap

@@ -1,4 +1,4 @@
-// Key-map selection (DESIGN.md §1.3; paper reconstruction §1.4, `checkForKeyMap`): after each
+// Key-map selection (docs/design.md §1.3; docs/method.md §1.4, `checkForKeyMap`): after each
 // scan, the rolling window becomes a key map when its origin has moved more than
 // `keymap_distance` since the last key map (the origin moves only when the window rolls, so in
 // practice one key map per roll), or when `keymap_period` seconds have passed. The builder

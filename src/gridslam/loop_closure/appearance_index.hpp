@@ -1,4 +1,4 @@
-// Global appearance search (DESIGN.md §1.6, §1.9): which earlier key maps look like a new one,
+// Global appearance search (docs/design.md §1.6, §1.9): which earlier key maps look like a new one,
 // with no pose prior. Every key map's descriptors go into an index; each query descriptor votes
 // once for every distinct key map among its k nearest stored descriptors that are clearly nearer
 // than the k-th (distance below ratio times the k-th's: near-duplicates of one place, seen in

@@ -97,7 +97,7 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
   }
   // Outside the gate: once enough recent gated closures agree with each other (the loops they
   // form with the graph close), the estimate is what was wrong, and they are accepted together
-  // (DESIGN.md 1.6: pairwise consistency of several closures).
+  // (docs/design.md §1.6: pairwise consistency of several closures).
   for (const Match& g : gated_) {
     if (g.k != match.k && match.k - g.k <= options_.gated_window &&
         Within(LoopError(match, g, graph), options_.pairwise_xy, options_.pairwise_theta)) {
@@ -140,7 +140,8 @@ Decision ClosureArbiter::OfferWithinMap(const Match& match, double u, const Grap
     return decision;
   }
   // The estimate disagrees: accept only with independent matches between the same two robots
-  // that agree with this one (then the estimate was wrong; DESIGN.md 1.6 pairwise consistency).
+  // that agree with this one (then the estimate was wrong; docs/design.md §1.6 pairwise
+  // consistency).
   const auto robot_of = [&](int id) { return graph.Robot(id); };
   std::vector<std::size_t> support;
   for (std::size_t s = 0; s < within_map_.size(); ++s) {

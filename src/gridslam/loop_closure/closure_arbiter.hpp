@@ -1,5 +1,5 @@
-// The closure arbiter (DESIGN.md §1.6): decides what becomes of a verified alignment between two
-// key maps, given the current estimate of the graph. It owns no graph; it reads one through
+// The closure arbiter (docs/design.md §1.6): decides what becomes of a verified alignment between
+// two key maps, given the current estimate of the graph. It owns no graph; it reads one through
 // GraphView and answers with a Decision (the matches to turn into loop edges, if any). It holds
 // the three queues of closures that wait for support, each an explicit state:
 //   - gated: prior-based closures outside the consistency gate. Once min_consistent_gated

@@ -1,9 +1,9 @@
 // Refinement of a key-map alignment by matching one map's obstacle points to the other map's
-// distance field (DESIGN.md §1.5, "optional refinement of the accepted transform by grid-to-grid
-// matching"): Gauss-Newton on sum_k rho(d_a(T_a_b * p_k)^2), with d_a the bilinearly interpolated
-// metric distance to a's nearest obstacle, a Huber kernel, and points that land on a's unknown
-// cells or farther than `max_distance` from its obstacles left out. Feature alignment is accurate
-// to a few centimetres; this brings it to the grid's sub-cell accuracy, as the front end's
+// distance field (docs/design.md §1.5, "optional refinement of the accepted transform by
+// grid-to-grid matching"): Gauss-Newton on sum_k rho(d_a(T_a_b * p_k)^2), with d_a the bilinearly
+// interpolated metric distance to a's nearest obstacle, a Huber kernel, and points that land on a's
+// unknown cells or farther than `max_distance` from its obstacles left out. Feature alignment is
+// accurate to a few centimetres; this brings it to the grid's sub-cell accuracy, as the front end's
 // scan-to-map matcher does for scans.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Options of the loop-closure search and its gates (DESIGN.md §1.6; paper reconstruction §1.5.6).
+// Options of the loop-closure search and its gates (docs/design.md §1.6; docs/method.md §1.5.6).
 #pragma once
 
 #include "gridslam/common/options.hpp"

@@ -1,4 +1,4 @@
-// Correlative search for a loop closure around a predicted transform (DESIGN.md §1.6), for the
+// Correlative search for a loop closure around a predicted transform (docs/design.md §1.6), for the
 // key maps whose feature alignment fails (sparse maps: open halls, rows of poles) while the
 // graph's prediction is off by more than the distance-field refinement's basin (about the
 // refinement's max_distance). After a long loop the prediction's error grows with the path

@@ -1,6 +1,6 @@
-// A cheap stand-in for covariance propagation in the loop-closure gates (DESIGN.md §1.6): every
-// pose-graph edge gets a weight in "metres of uncertainty" (a sequential edge its length, a loop
-// edge a small constant), and the uncertainty distance between two key maps is the shortest
+// A cheap stand-in for covariance propagation in the loop-closure gates (docs/design.md §1.6):
+// every pose-graph edge gets a weight in "metres of uncertainty" (a sequential edge its length, a
+// loop edge a small constant), and the uncertainty distance between two key maps is the shortest
 // weighted path between them (Dijkstra). Two key maps far apart along the chain but joined by an
 // earlier closure are thus close, as their relative covariance is small.
 #pragma once

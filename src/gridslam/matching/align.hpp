@@ -1,6 +1,6 @@
-// Alignment of two key maps with no initial guess (DESIGN.md §1.5; reconstruction.md §1.5.2–1.5.3,
-// done as its recommendations say rather than as the authors' code): descriptor matching,
-// 2-point RANSAC, least-squares refinement (the refined transform is the measurement), an
+// Alignment of two key maps with no initial guess (docs/design.md §1.5; docs/method.md
+// §1.5.2–1.5.3, done as its recommendations say rather than as the authors' code): descriptor
+// matching, 2-point RANSAC, least-squares refinement (the refined transform is the measurement), an
 // information matrix from the fit, then verification by grid agreement, which guards against
 // perceptual aliasing. The result T_a_b is the pose of key map b's frame in key map a's frame,
 // p_a = T_a_b * p_b: the g2o EDGE_SE2 measurement of an edge from a to b.

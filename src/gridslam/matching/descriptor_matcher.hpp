@@ -1,4 +1,4 @@
-// Descriptor association between the features of two key maps (DESIGN.md §1.5; reconstruction.md
+// Descriptor association between the features of two key maps (docs/design.md §1.5; docs/method.md
 // §1.5.2 and §2.6). Brute force over the full distance matrix (one GEMM for float descriptors,
 // popcount for binary ones), gated by the sign of the Laplacian (Bay et al. 2008 §4.1: only blobs
 // of the same contrast can match) and optionally by keypoint scale, then a cross-check (strict

@@ -1,8 +1,8 @@
-// Input of the key-map aligner (DESIGN.md §1.5, reconstruction.md §1.5.2–1.5.3): the features of
+// Input of the key-map aligner (docs/design.md §1.5, docs/method.md §1.5.2–1.5.3): the features of
 // one key map, already converted to metres in the key map's own frame (the window centre, yaw 0,
-// DESIGN.md §1.3), and a putative correspondence between two such sets. The type is independent
-// of the detector: SURF (float descriptors, sign of the Laplacian), SIFT, or binary ORB/AKAZE
-// descriptors (CV_8U rows compared by Hamming distance) all fill the same struct.
+// docs/design.md §1.3), and a putative correspondence between two such sets. The type is
+// independent of the detector: SURF (float descriptors, sign of the Laplacian), SIFT, or binary
+// ORB/AKAZE descriptors (CV_8U rows compared by Hamming distance) all fill the same struct.
 #pragma once
 
 #include <string>

@@ -1,7 +1,7 @@
-// Verification of a key-map alignment by grid agreement (DESIGN.md §1.5): feature inliers alone
-// cannot tell a place from a look-alike (perceptual aliasing), the grids can. The obstacle points
-// of map b are moved into map a by T_a_b; those landing in the part of a that a has observed form
-// the overlap, and the fraction of them within `agreement_distance` of an obstacle of a (one
+// Verification of a key-map alignment by grid agreement (docs/design.md §1.5): feature inliers
+// alone cannot tell a place from a look-alike (perceptual aliasing), the grids can. The obstacle
+// points of map b are moved into map a by T_a_b; those landing in the part of a that a has observed
+// form the overlap, and the fraction of them within `agreement_distance` of an obstacle of a (one
 // lookup in a's distance field each) is the agreement. An obstacle of b that lands where a saw
 // free space is evidence against the transform; one that lands in a's unknown area is no evidence.
 // The fraction landing farther than `contradiction_distance` from any obstacle of a (deep in a's

@@ -1,5 +1,5 @@
-// Closed-form least-squares rigid fit in 2D and its information matrix (DESIGN.md §1.5;
-// reconstruction.md §1.5.3, which fixes the authors' code: the LS transform is the measurement,
+// Closed-form least-squares rigid fit in 2D and its information matrix (docs/design.md §1.5;
+// docs/method.md §1.5.3, which fixes the authors' code: the LS transform is the measurement,
 // and the information comes from the LS normal matrix). The fit is Umeyama/Kabsch without scale
 // (Umeyama 1991, Eqs. (34)–(42) with c = 1): in 2D the optimal rotation is
 // theta = atan2(sum cross(b_k', a_k'), sum dot(b_k', a_k')) over centred points, and the

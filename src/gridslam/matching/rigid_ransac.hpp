@@ -1,4 +1,4 @@
-// Robust SE(2) estimation from putative point matches (DESIGN.md §1.5; reconstruction.md §1.5.3).
+// Robust SE(2) estimation from putative point matches (docs/design.md §1.5; docs/method.md §1.5.3).
 // Hypotheses come from two matches: the rotation aligns b_i - b_j with a_i - a_j and the
 // translation maps the pair's midpoint, so both members have the same residual. Pairs closer than
 // `min_pair_separation` are skipped, as are pairs whose lengths differ by more than

@@ -1,4 +1,4 @@
-// Cutting one robot's log into N robots with unknown relative starts (issue 8; DESIGN.md §1.9,
+// Cutting one robot's log into N robots with unknown relative starts (issue 8; docs/design.md §1.9,
 // §2 `gridslam split`): the log's frames are cut into N consecutive pieces (by scan count or by
 // time), and each piece is re-expressed in its own odometry frame by a random rigid transform
 // T_new_old (any rotation, a translation of up to `max_translation`), drawn from the seed, so

@@ -1,4 +1,4 @@
-// Writing one piece of a split log as a robot's CARMEN log (issue 8; FORMATS.md §1): a comment
+// Writing one piece of a split log as a robot's CARMEN log (issue 8; docs/formats.md §1): a comment
 // saying where it came from, the laser-offset PARAMs, then for every scan an ODOM line with the
 // piece's odometry at the scan and the scan as ROBOTLASER1 (beam geometry plus the robot's and
 // the laser's odometry poses), both with the scan's printed timestamp, exactly as in the original

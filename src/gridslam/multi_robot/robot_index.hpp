@@ -1,5 +1,5 @@
 // Which robot a scan timestamp belongs to (issue 8; the `index.txt` of `gridslam simulate` and
-// `gridslam split`, DESIGN.md §2): the attribution behind splitting benchmark relations into
+// `gridslam split`, docs/design.md §2): the attribution behind splitting benchmark relations into
 // within- and between-robot sets, and behind scoring a relation whose two poses lie in different
 // robots' trajectories (Kümmerle et al. 2009's metric over a merged map). Timestamps are matched
 // to the nearest indexed time within a tolerance, as the relation metric matches poses.

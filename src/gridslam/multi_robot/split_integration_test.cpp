@@ -1,4 +1,4 @@
-// Splitting the project's real logs (FORMATS.md §1.5): intel (unpadded and late timestamps,
+// Splitting the project's real logs (docs/formats.md §1.5): intel (unpadded and late timestamps,
 // repaired by the reader) and fr079 (laser and ODOM out of time order). Each piece, written as
 // a log and read back, must give every scan the original odometry moved by the piece's
 // transform, with the printed timestamps unchanged, and the benchmark relations must be

@@ -1,4 +1,4 @@
-// Choosing which key maps to align with a key map (DESIGN.md §1.6). One rule for every kind of
+// Choosing which key maps to align with a key map (docs/design.md §1.6). One rule for every kind of
 // candidate: the nearest first (by predicted distance, then vertex id), at most max_candidates,
 // and no two of the same robot closer than candidate_spacing along its path (a place is seen by
 // many overlapping key maps; aligning several of them repeats one piece of evidence).

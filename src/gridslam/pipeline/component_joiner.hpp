@@ -1,4 +1,4 @@
-// Joining two robots' map components (DESIGN.md §1.9): once the closure arbiter has enough
+// Joining two robots' map components (docs/design.md §1.9): once the closure arbiter has enough
 // mutually consistent matches between two components (ClosureArbiter::OfferJoin), the joiner
 // moves the newer component into the older one's frame so that the first match holds, adds the
 // matches as loop edges (outcome kJoined), and runs the catch-up search: every key map of the

@@ -1,4 +1,4 @@
-// Aligning two key maps of the graph (DESIGN.md §1.5, §1.6): the mapper's parts ask an Aligner
+// Aligning two key maps of the graph (docs/design.md §1.5, §1.6): the mapper's parts ask an Aligner
 // for the pose of key map k in key map i's frame, and never look at features or grids
 // themselves, so tests can script the answers (a ScriptedAligner on a synthetic graph).
 // FeatureAligner is the real one: SURF matching + RANSAC + verification, refined on the

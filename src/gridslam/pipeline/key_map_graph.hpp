@@ -1,6 +1,6 @@
-// The key-map graph (DESIGN.md §1.6, §1.7): the pose graph of the mapper, its vertices (key maps
-// with their descriptions), its edges (sequential and loop), the closure records the loop edges
-// come from, and the map components (robots whose graphs are joined share one frame).
+// The key-map graph (docs/design.md §1.6, §1.7): the pose graph of the mapper, its vertices (key
+// maps with their descriptions), its edges (sequential and loop), the closure records the loop
+// edges come from, and the map components (robots whose graphs are joined share one frame).
 // Contract: this class is the ONLY writer of vertices, edges and estimates. The online optimizer
 // (SGD) always holds exactly the active edges and one anchor per component: an edge is added to
 // it when it is added here, and the optimizer is rebuilt whenever components merge or edges are

@@ -1,5 +1,5 @@
-// The graph-SLAM mapper (DESIGN.md §1; Gil, Juliá, Reinoso 2015): frames of one or several robots
-// go in one at a time; each robot's front end turns them into key maps; every key map is
+// The graph-SLAM mapper (docs/design.md §1; Gil, Juliá, Reinoso 2015): frames of one or several
+// robots go in one at a time; each robot's front end turns them into key maps; every key map is
 // described (distance transform + SURF), becomes a vertex of the pose graph with a sequential
 // edge to the robot's previous key map, and is matched against earlier key maps for loop
 // closures: candidates predicted by the current estimate, and a global appearance search across

@@ -1,4 +1,4 @@
-// Loop closures of the Mapper (DESIGN.md §1.6, §1.9): the prior-based candidates of a new key
+// Loop closures of the Mapper (docs/design.md §1.6, §1.9): the prior-based candidates of a new key
 // map (CandidateSelector::Prior) and the global appearance search, which looks a new key map up
 // in every robot's appearance index, its own robot's included, with no prior: a robot whose
 // drift outgrew the prior-based search still closes its loop, and robots with unknown relative

@@ -1,6 +1,6 @@
-// The end of a Mapper run (DESIGN.md §1.3, §1.7, §1.8): final optimization with pruning of loop
-// edges that the optimum cannot explain (KeyMapGraph::OptimizeAndPrune), every scan's corrected
-// pose from its key map, and the fused global grid of every map component.
+// The end of a Mapper run (docs/design.md §1.3, §1.7, §1.8): final optimization with pruning of
+// loop edges that the optimum cannot explain (KeyMapGraph::OptimizeAndPrune), every scan's
+// corrected pose from its key map, and the fused global grid of every map component.
 #include <algorithm>
 #include <map>
 

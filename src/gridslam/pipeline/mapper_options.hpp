@@ -1,4 +1,4 @@
-// Options of the graph-SLAM mapper (DESIGN.md §1, §1.6-1.8): how key maps become a pose graph,
+// Options of the graph-SLAM mapper (docs/design.md §1, §1.6-1.8): how key maps become a pose graph,
 // how it is optimized online and at the end, and how every scan's corrected pose follows.
 #pragma once
 
@@ -24,7 +24,7 @@ struct GraphOptions {
   double sequential_sigma_xy_per_m = 0.01;      ///< [m/m]
   double sequential_sigma_theta = 0.002;        ///< [rad]
   double sequential_sigma_theta_per_m = 0.002;  ///< [rad/m]
-  /// Weight of a loop edge in the uncertainty distance (DESIGN 1.6) [m].
+  /// Weight of a loop edge in the uncertainty distance (docs/design.md §1.6) [m].
   double loop_uncertainty = 0.5;
   /// SGD iterations run after a key map whose accepted closures disagree with the current
   /// estimate by more than online_trigger_xy / online_trigger_theta (online, incremental) [-].

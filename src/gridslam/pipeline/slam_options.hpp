@@ -1,4 +1,4 @@
-// SlamOptions: the whole configuration, one section per component (STYLE.md §9; KISS-ICP's
+// SlamOptions: the whole configuration, one section per component (docs/style.md §9; KISS-ICP's
 // KISSConfig, Cartographer's TrajectoryBuilderOptions). config/default.yaml mirrors it and
 // `gridslam --print-config` prints it. Each component's struct lives in its module's header; add
 // a section here when a component lands.
@@ -33,22 +33,22 @@ struct SlamOptions {
   fusion::FusionOptions fusion;                   ///< Global map fusion.
   quality::SelfCheckOptions quality;              ///< Map self-check (docs/self_check.md).
   simulation::SimulationOptions simulation;       ///< `gridslam simulate`.
-  benchmark::AlignEvalOptions align_eval;         ///< `gridslam align-eval` (DESIGN.md 3.2).
+  benchmark::AlignEvalOptions align_eval;         ///< `gridslam align-eval` (docs/design.md §3.2).
   multi_robot::SplitOptions split;                ///< `gridslam split` (one log as several robots).
 
   template <class V>
   void Visit(V& v) {
-    v.Section("log", log, "Reading CARMEN laser logs (FORMATS.md section 1)");
+    v.Section("log", log, "Reading CARMEN laser logs (docs/formats.md §1)");
     v.Section("front_end", front_end,
-              "Front end: local map, scan matching, key maps (DESIGN.md 1.2-1.3)");
+              "Front end: local map, scan matching, key maps (docs/design.md §1.2-1.3)");
     v.Section("description", description,
-              "Key-map description: distance transform + SURF (DESIGN.md 1.4)");
-    v.Section("matching", matching, "Key-map alignment without prior (DESIGN.md section 1.5)");
-    v.Section("eval", eval, "Benchmark relation metric (DESIGN.md section 3.1)");
-    v.Section("optimizer", optimizer, "Pose-graph optimization (DESIGN.md section 1.7)");
-    v.Section("loop_closure", loop_closure, "Loop-closure search and gates (DESIGN.md 1.6)");
+              "Key-map description: distance transform + SURF (docs/design.md §1.4)");
+    v.Section("matching", matching, "Key-map alignment without prior (docs/design.md §1.5)");
+    v.Section("eval", eval, "Benchmark relation metric (docs/design.md §3.1)");
+    v.Section("optimizer", optimizer, "Pose-graph optimization (docs/design.md §1.7)");
+    v.Section("loop_closure", loop_closure, "Loop-closure search and gates (docs/design.md §1.6)");
     v.Section("graph", graph, "Key-map graph: edges, online and final optimization");
-    v.Section("fusion", fusion, "Global map fusion (DESIGN.md 1.8)");
+    v.Section("fusion", fusion, "Global map fusion (docs/design.md §1.8)");
     v.Section("quality", quality, "Map self-check without ground truth (docs/self_check.md)");
     v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
     v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");

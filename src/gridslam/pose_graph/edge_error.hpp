@@ -1,5 +1,5 @@
 // The error of one pose-graph edge, its Jacobians and the total chi^2, in the g2o convention
-// (FORMATS.md §2; g2o EdgeSE2::computeError / linearizeOplus): for vertices X_i, X_j and the
+// (docs/formats.md §2; g2o EdgeSE2::computeError / linearizeOplus): for vertices X_i, X_j and the
 // measurement Z = T_i_j, e = (x, y, theta) of Z^-1 * X_i^-1 * X_j with theta wrapped to [-pi, pi),
 // and chi^2 = sum over edges of e^T * Omega * e. Jacobians are taken with respect to additive
 // perturbations of the vertex parameters (x + dx, y + dy, theta + dtheta), g2o's VertexSE2::oplus,

@@ -1,6 +1,6 @@
 // Sparse Gauss-Newton and Levenberg-Marquardt on the g2o error of edge_error.hpp: the reference
 // solver that measures how close SGD gets to the optimum, and the final polish of `sgd+gn`
-// (DESIGN.md §1.7, reconstruction.md §4.3). The normal equations H dx = -b are assembled block by
+// (docs/design.md §1.7, docs/method.md §4.3). The normal equations H dx = -b are assembled block by
 // block (3x3 per vertex pair, lower triangle) into a compressed sparse matrix whose pattern and
 // AMD ordering are computed once; each iteration only refills the values and runs a numeric
 // sparse Cholesky (Eigen's SimplicialLDLT). Fixed vertices (and one anchor per component, see

@@ -1,4 +1,4 @@
-// Structure of a pose graph that every optimizer needs (DESIGN.md §1.7, §1.9): connected
+// Structure of a pose graph that every optimizer needs (docs/design.md §1.7, §1.9): connected
 // components, one anchor per component (a graph file without FIX has a free gauge; g2o and Ceres
 // fix the first vertex), and the odometry-chained initial guess used for edges-only files such as
 // manhattan.g2o and for the benchmark protocol: each vertex is placed by composing edge

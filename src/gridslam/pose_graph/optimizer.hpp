@@ -1,4 +1,4 @@
-// One entry point for the back end (DESIGN.md §1.7, §3.3): Optimize(graph, options) runs SGD
+// One entry point for the back end (docs/design.md §1.7, §3.3): Optimize(graph, options) runs SGD
 // (sgd_optimizer.hpp), sparse Gauss-Newton or Levenberg-Marquardt (gauss_newton.hpp), or SGD to
 // get into the basin of the optimum followed by Gauss-Newton to converge ("sgd+gn", the default),
 // on a graph in place, and returns an OptimizationReport with chi^2 before/after, iteration

@@ -1,7 +1,7 @@
-// PoseGraph: the 2-D constraint network optimized by the back end (DESIGN.md §1.7). Vertices are
-// poses T_map_v (x, y, theta) with an optional "fixed" flag; edges are relative measurements
+// PoseGraph: the 2-D constraint network optimized by the back end (docs/design.md §1.7). Vertices
+// are poses T_map_v (x, y, theta) with an optional "fixed" flag; edges are relative measurements
 // T_i_j (the pose of vertex j in vertex i's frame) with a 3x3 information matrix in (x, y, theta)
-// order, exactly the semantics of g2o's EDGE_SE2 (FORMATS.md §2). Vertex ids are arbitrary
+// order, exactly the semantics of g2o's EDGE_SE2 (docs/formats.md §2). Vertex ids are arbitrary
 // integers (as in the files); the graph also numbers vertices and edges densely by insertion
 // order ("indices"), which is what the optimizers work with. Connected components, anchors and
 // the odometry-chained initial guess live in graph_utils.hpp; the error in edge_error.hpp.

@@ -1,7 +1,7 @@
 // Stochastic gradient descent on a tree parameterization of the pose graph: Olson, Leonard,
 // Teller, ICRA 2006, as refined by Grisetti, Stachniss, Grzonka, Burgard, RSS 2007 (TORO 2-D),
 // with the online learning-rate schedule of Grisetti, Stachniss, Burgard, T-ITS 2009
-// (reconstruction.md §4; the paper's optimizer, §1.5.5).
+// (docs/method.md §4; the paper's optimizer, §1.5.5).
 //
 // Each connected component gets a spanning tree rooted at its fixed vertices (one anchor per
 // component); all roots hang from one virtual root at the map origin. A vertex's parameter is its

@@ -1,5 +1,5 @@
 // Options of the SGD pose-graph optimizer (Olson et al. 2006; Grisetti et al. 2007, TORO 2-D;
-// Grisetti et al. 2009; reconstruction.md §4.1-4.3). See sgd_optimizer.hpp for the algorithm.
+// Grisetti et al. 2009; docs/method.md §4.1-4.3). See sgd_optimizer.hpp for the algorithm.
 #pragma once
 
 #include <string>

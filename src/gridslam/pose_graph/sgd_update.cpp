@@ -1,5 +1,5 @@
 // One SGD iteration of SgdOptimizer: the Jacobi preconditioner and the per-edge update
-// (reconstruction.md §4.2 item 5).
+// (docs/method.md §4.2 item 5).
 #include <algorithm>
 #include <cmath>
 #include <limits>

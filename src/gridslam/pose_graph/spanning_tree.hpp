@@ -1,4 +1,4 @@
-// Spanning forests of a pose graph for the tree parameterization of SGD (reconstruction.md §4.2
+// Spanning forests of a pose graph for the tree parameterization of SGD (docs/method.md §4.2
 // item 1; Olson et al. 2006 use the odometry chain, TORO's buildSimpleTree the smallest-id lower
 // neighbour, TORO's buildMST a breadth-first tree). Every tree is rooted at fixed vertices.
 #pragma once

@@ -134,6 +134,9 @@ Result<std::optional<Frame>> RecordingReader::Next() {
     frame = std::move(state_->frames[state_->next++]);
     ++state_->bag_stats.scans;
   }
+  if (!frame && state_->delivered == 0 && state_->carmen) {
+    return io::NoScansError(state_->path, state_->carmen->Stats());  // what the log held
+  }
   if (!frame && state_->delivered == 0) {
     return InvalidInput(
         std::string("the ") + RecordingFormatName(state_->format) + " has no laser scans",

@@ -1,5 +1,5 @@
 // A planar laser scan and the frame (one timestamped scan with its odometry) that flows through
-// the pipeline (DESIGN.md §1.1). Beam k has angle angle_min + k * angle_increment in the laser
+// the pipeline (docs/design.md §1.1). Beam k has angle angle_min + k * angle_increment in the laser
 // frame (0 along the laser's +x, counter-clockwise), as sensor_msgs/LaserScan.
 #pragma once
 
@@ -40,7 +40,7 @@ struct Frame {
   /// False when the recording has no odometry: T_odom_base is then a placeholder (identity) and
   /// the front end predicts the motion from the scans alone.
   bool has_odometry = true;
-  Pose2 T_base_laser;   ///< Laser mounting on the robot.
+  Pose2 T_base_laser;  ///< Laser mounting on the robot.
   LaserScan scan;
   std::optional<Pose2> T_world_base_true;  ///< Ground truth, when the log has it (TRUEPOS).
   long source_line = 0;                    ///< Line of the log it came from (for messages).

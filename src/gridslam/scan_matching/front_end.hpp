@@ -1,4 +1,4 @@
-// The front end (DESIGN.md §1.2-1.3; paper reconstruction §1.4): frames go in one at a time; each
+// The front end (docs/design.md §1.2-1.3; docs/method.md §1.4): frames go in one at a time; each
 // scan is matched against the rolling local map built from the previous scans (scan_matcher.hpp),
 // starting from the odometry increment applied to the previous estimate; the scan is then
 // inserted at its estimated pose (when the robot moved enough since the last insertion), the

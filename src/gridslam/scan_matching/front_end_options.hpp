@@ -70,9 +70,9 @@ struct FrontEndOptions {
   template <class V>
   void Visit(V& v) {
     v("match", match, "Match scans (false: raw odometry poses, for baselines)");
-    v.Section("local_map", local_map, "Rolling-window local occupancy map (DESIGN 1.3)");
-    v.Section("matcher", matcher, "Scan-to-local-map matcher (DESIGN 1.2)");
-    v.Section("keymap", keymap, "Key-map selection (DESIGN 1.3)");
+    v.Section("local_map", local_map, "Rolling-window local occupancy map (docs/design.md §1.3)");
+    v.Section("matcher", matcher, "Scan-to-local-map matcher (docs/design.md §1.2)");
+    v.Section("keymap", keymap, "Key-map selection (docs/design.md §1.3)");
     v("insert_distance", insert_distance, "Insert a scan after this much travel [m]");
     v("insert_angle", insert_angle, "... or this much rotation [rad]");
     v("insert_period", insert_period, "... or this much time [s]");

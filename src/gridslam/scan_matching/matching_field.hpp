@@ -2,7 +2,7 @@
 // obstacle cells (Felzenszwalb-Huttenlocher, distance_transform/), truncated at the maximum
 // correspondence distance, with the nearest obstacle cell of every cell. Nearest-obstacle labels
 // give the matcher O(1) correspondences (the map-side point and normal of each scan point, as
-// PL-ICP's closest segment, paper reconstruction §6); the distances give a smooth (bilinear)
+// PL-ICP's closest segment, docs/method.md §6); the distances give a smooth (bilinear)
 // distance field and the correlative search's score. The field follows the window's changes
 // incrementally and exactly (a cell's truncated distance can only change within the truncation
 // radius r of a cell whose obstacle status changed): a new obstacle is stamped into the disk of

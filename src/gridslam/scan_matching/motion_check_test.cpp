@@ -55,7 +55,7 @@ TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityIsT
     EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
     // The velocity comes from the (noisy) odometry of the last second.
     EXPECT_TRUE(IsApprox(p.Trusted(), truth_, 0.02, 0.01));
-    check_.Update(At(t_), odometry_, truth_, p);
+    check_.Update(At(t_), odometry_, truth_, p, /*odometry_overruled=*/true);
     // The odometry carries on from the jumped pose: its next increments are fine again.
     Drive(5);
   }

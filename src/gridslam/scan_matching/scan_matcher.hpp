@@ -1,5 +1,5 @@
-// Scan-to-local-map matcher of the front end (DESIGN.md §1.2). The paper uses Censi's PL-ICP
-// (paper reconstruction §6) against a key-frame scan; here each scan is matched against the
+// Scan-to-local-map matcher of the front end (docs/design.md §1.2). The paper uses Censi's PL-ICP
+// (docs/method.md §6) against a key-frame scan; here each scan is matched against the
 // rolling local map built from the previous scans, by Gauss-Newton on the map's own exact distance
 // transform (matching_field.hpp): the residual of a point is the bilinearly interpolated distance
 // to the nearest obstacle cell, its gradient restricted to the point's scan normal on clean

@@ -1,6 +1,6 @@
 // Ground-truth relations for simulated logs, in the SLAM benchmark's form (Kümmerle et al. 2009;
-// FORMATS.md §4): each relation is the true motion T_1_2 from the robot's pose at t1 to its pose
-// at t2, expressed in the frame at t1, computed from world-frame ground truth. Three kinds:
+// docs/formats.md §4): each relation is the true motion T_1_2 from the robot's pose at t1 to its
+// pose at t2, expressed in the frame at t1, computed from world-frame ground truth. Three kinds:
 // pairs close in time (every `short_stride`-th scan with the first scan `short_span` later),
 // revisits (a scan paired with the nearest earlier scan at least `revisit_min_gap` before it,
 // within `revisit_max_distance` and `revisit_max_angle` and in line of sight: loop closures

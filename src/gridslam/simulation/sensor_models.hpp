@@ -2,10 +2,10 @@
 // adds Gaussian range noise, occasional spurious short returns (dust, people) and missing
 // returns; a beam that hits nothing within the maximum range is a no-return, written as the
 // configured no-return range (max range, or a sentinel such as 81.91 m as in the Freiburg logs;
-// FORMATS.md §1.5). The odometry integrates each true motion increment with a random error whose
-// variance grows linearly with distance travelled and angle turned (a random walk, so the error
-// does not depend on the integration step; Thrun et al., Probabilistic Robotics §5.4), plus an
-// optional systematic scale and drift bias.
+// docs/formats.md §1.5). The odometry integrates each true motion increment with a random error
+// whose variance grows linearly with distance travelled and angle turned (a random walk, so the
+// error does not depend on the integration step; Thrun et al., Probabilistic Robotics §5.4), plus
+// an optional systematic scale and drift bias.
 #pragma once
 
 #include "gridslam/geometry/pose2.hpp"

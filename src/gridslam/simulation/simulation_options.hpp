@@ -1,6 +1,6 @@
 // Options of the built-in 2D laser simulator (`gridslam simulate`, issue 3): the world, the
 // robots, a range sensor like a SICK LMS on a Pioneer, the odometry error model and the rules
-// that turn ground truth into benchmark relations (Kümmerle et al. 2009; FORMATS.md §4). The
+// that turn ground truth into benchmark relations (Kümmerle et al. 2009; docs/formats.md §4). The
 // defaults give a log that looks like the Freiburg/Intel logs: 181 beams over 180°, 5 Hz scans,
 // 10 Hz ODOM, 0.5 m/s, about 1 cm range noise and odometry that drifts a few percent.
 #pragma once

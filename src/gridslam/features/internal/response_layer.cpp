@@ -35,7 +35,7 @@ RowPointers Rows(const IntegralImage& ii, int y, const FilterGeometry& f) {
           ii.Row(y + 1),     ii.Row(y + l + 1)};
 }
 
-// Integer sums of Dxx, Dyy and Dxy at column x (Eq. (4)'s box filters, reconstruction.md §2.2):
+// Integer sums of Dxx, Dyy and Dxy at column x (Eq. (4)'s box filters, docs/method.md §2.2):
 // Dyy = outer (2l−1) × L box − 3 × middle (2l−1) × l lobe, Dxx its transpose, Dxy the four
 // l × l lobes, + top-left and bottom-right.
 struct Sums {

@@ -1,4 +1,4 @@
-// Box-filter responses of the Fast-Hessian detector (Bay et al. 2008, §3.1–3.3; reconstruction.md
+// Box-filter responses of the Fast-Hessian detector (Bay et al. 2008, §3.1–3.3; docs/method.md
 // §2.2) on one octave's sampling grid: det(H_approx) = Dxx·Dyy − (0.9·Dxy)² of one filter size at
 // every sample where the filter fits, computed from the integral image with the lobes described in
 // fast_hessian.hpp. A layer whose filter size already appeared in the previous octave (the paper's

@@ -1,4 +1,4 @@
-// Parses one CARMEN log line (FORMATS.md §1.2–1.3) into a message: the field layouts of ODOM,
+// Parses one CARMEN log line (docs/formats.md §1.2–1.3) into a message: the field layouts of ODOM,
 // TRUEPOS, PARAM, SYNC, FLASER/RLASER, RAWLASER1..4 and ROBOTLASER1/2. FLASER/RLASER beam
 // geometry is guessed as CARMEN's carmen_laser_guess_fov()/..._angle_increment() do. A malformed
 // line gives an InvalidInput error naming file, line, message type and field. Internal to io/.

@@ -1,4 +1,4 @@
-// Shared machinery of the g2o (FORMATS.md §2) and TORO (§3) graph readers: one line loop for
+// Shared machinery of the g2o (docs/formats.md §2) and TORO (§3) graph readers: one line loop for
 // both formats (a GraphSyntax names the tags and fields and builds the information matrix),
 // whitespace tokenizing, strict number parsing with file:line:field errors, and assembling a
 // PoseGraph from declared vertices, edges and FIX lines. Numbers must be finite and within
