@@ -81,7 +81,7 @@ TEST_F(RecordingReaderTest, RefusesFilesThatAreNotRecordings) {
 TEST_F(RecordingReaderTest, ALogWithoutScansIsAnError) {
   auto frames = ReadRecording(Write("odom.clf", "ODOM 0 0 0 0 0 0 1.0 h 1.0\n"), {});
   ASSERT_FALSE(frames.ok());
-  EXPECT_NE(frames.error().message.find("no laser scans"), std::string::npos);
+  EXPECT_NE(frames.error().message.find("no laser scan"), std::string::npos);
 }
 
 }  // namespace
