@@ -181,6 +181,11 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
             {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},
             {"pruned", s.pruned}}},
           {"joins", s.joins},
+          {"odometry",
+           {{"doubtful", s.odometry_doubtful},
+            {"overruled", s.odometry_overruled},
+            {"missing", s.odometry_missing},
+            {"wide_searches", s.wide_searches}}},
           {"chi2_final", s.chi2_final},
           {"time_s",
            {{"front_end", s.seconds_front_end},
@@ -345,6 +350,20 @@ int RunMap(const MapArgs& args, AppContext& context) {
                  args.output.c_str());
   }
   const pipeline::MapperStats& s = result.stats;
+  // Say what the front end had to do without the odometry (a glitching or missing odometry is
+  // otherwise silent).
+  if (s.odometry_missing > 0) {
+    std::fprintf(stderr,
+                 "gridslam map: warning: %ld scans have no odometry; their motion comes from scan "
+                 "matching alone\n",
+                 s.odometry_missing);
+  }
+  if (s.odometry_overruled > 0) {
+    std::fprintf(stderr,
+                 "gridslam map: warning: %ld odometry increments were implausible and replaced by "
+                 "scan matching (glitches?)\n",
+                 s.odometry_overruled);
+  }
   std::fprintf(stderr,
                "gridslam map: %ld scans, %ld key maps, %ld loop closures accepted (%ld verified, "
                "%ld gated, %ld pruned), %ld joins; %.2f s, %.0fx real time; outputs in %s\n",

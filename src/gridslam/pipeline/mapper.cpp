@@ -34,6 +34,10 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   const auto start = std::chrono::steady_clock::now();
   scan_matching::FrontEndStep step = state.front_end->AddFrame(frame);
   stats.seconds_front_end += SecondsSince(start);
+  stats.odometry_doubtful += step.odometry == scan_matching::OdometryCheck::kDoubtful ? 1 : 0;
+  stats.odometry_missing += step.odometry == scan_matching::OdometryCheck::kMissing ? 1 : 0;
+  stats.odometry_overruled += step.odometry_overruled ? 1 : 0;
+  stats.wide_searches += step.wide_search ? 1 : 0;
   if (state.last_pose.has_value()) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
   }

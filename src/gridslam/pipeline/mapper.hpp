@@ -56,6 +56,10 @@ struct MapperStats {
   long rejected_gate = 0;
   long pruned = 0;
   long joins = 0;
+  long odometry_doubtful = 0;   ///< Front-end frames whose odometry increment was implausible.
+  long odometry_overruled = 0;  ///< ... of which the scan match replaced the increment.
+  long odometry_missing = 0;    ///< Frames without odometry (scan matching alone).
+  long wide_searches = 0;       ///< Wide correlative searches of the front ends.
   double seconds_front_end = 0.0;
   double seconds_description = 0.0;
   double seconds_alignment = 0.0;
