@@ -150,14 +150,12 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                   FrontEndStep* step) {
   const double good = options_.matcher.good_score;
   const Pose2& centre = prediction.constant_velocity;
-  MatchResult best;
-  MatchResult from_odometry;
   if (prediction.check == OdometryCheck::kDoubtful) {
     // The odometry may well be right (a real manoeuvre, or a false alarm): it keeps the frame
     // unless the scan clearly prefers another pose. The constant velocity overrules it only
     // when it explains the scan well, clearly better, and at another pose; a failed or poor
     // match is no evidence against the odometry.
-    from_odometry =
+    const MatchResult from_odometry =
         matcher_.Match(*window_, field_, points, prediction.odometry, odometry_information);
     const MatchResult from_velocity =
         matcher_.Match(*window_, field_, points, centre, velocity_information);
@@ -167,17 +165,14 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     const bool overrule =
         from_velocity.ok && from_velocity.score >= good && !same &&
         (!from_odometry.ok || from_velocity.score > from_odometry.score + kScoreMargin);
-    best = overrule ? from_velocity : from_odometry;
-    if (overrule || (from_odometry.ok && from_odometry.score >= good)) {
-      return best;
-    }
-  } else {
-    best = matcher_.Match(*window_, field_, points, centre, velocity_information);
-    if (best.ok && best.score >= good) {
-      return best;
-    }
+    // No wide search here: the robot moved smoothly even if its odometry jumped, so the pose is
+    // near the constant velocity, whose match already searches around it (±0.3 m, ±0.25 rad).
+    // A wide search against a doubtful odometry found look-alike poses a metre sideways in
+    // halls the scan barely constrains (fr-clinic).
+    return overrule ? from_velocity : from_odometry;
   }
-  if (!options_.wide_search.enabled) {
+  MatchResult best = matcher_.Match(*window_, field_, points, centre, velocity_information);
+  if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
   const WideSearchOptions& wide = options_.wide_search;
@@ -240,7 +235,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
     // A doubtful odometry keeps its prior unless the scan overrules it; a missing one has the
     // constant velocity instead.
     const Pose2 predicted = missing ? prediction.constant_velocity : prediction.odometry;
-    const PriorSigmas defaults = DefaultPriorSigmas(Between(last_estimate_, predicted));
+    const PriorSigmas defaults = DefaultPriorSigmas(missing ? Between(last_estimate_, predicted)
+                                                            : prediction.odometry_increment);
     const Eigen::Matrix3d prior_information = PriorInformation(defaults, predicted, !missing);
     pose = predicted;
     step.covariance = prior_information.inverse();
@@ -279,8 +275,11 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       const Pose2& found = step.match.T_odom_base;
       const bool near_prediction = !missing && within(predicted, found, options_.max_correction_xy,
                                                       options_.max_correction_theta);
+      // Against a doubtful odometry, only a match that explains the scan well may leave the
+      // odometry's limits; a poor one (a hall the scan barely constrains) keeps the odometry.
+      const bool evidence = missing || step.match.score >= options_.matcher.good_score;
       const bool near_velocity =
-          !trusted &&
+          !trusted && evidence &&
           within(prediction.constant_velocity, found,
                  std::max(options_.max_correction_xy,
                           std::sqrt(2.0) * options_.wide_search.linear_window),
@@ -293,7 +292,9 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
-        if (trusted) {
+        // A doubtful increment the scan did not overrule was matched with the odometry's prior:
+        // its correction is a sample of the odometry's noise like any other.
+        if (trusted || (!missing && !step.odometry_overruled)) {
           odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
                               defaults.theta);
         }

@@ -105,10 +105,10 @@ class FrontEnd {
                                                  const Pose2& T_odom_base_predicted,
                                                  bool odometry_trusted) const;
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
-  /// Matches a frame whose odometry is doubtful or missing: from the odometry's prediction
-  /// (if any), from the constant velocity, and from the wide search's maxima when neither
-  /// explains the scan. A doubtful odometry keeps the frame unless the scan clearly prefers
-  /// another pose (step->odometry_overruled).
+  /// Matches a frame whose odometry is doubtful or missing. Doubtful: from the odometry's
+  /// prediction and from the constant velocity; the odometry keeps the frame unless the scan
+  /// clearly prefers the other pose. Missing: from the constant velocity, and from the wide
+  /// search's maxima when that explains the scan poorly.
   [[nodiscard]] MatchResult MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                         const MotionPrediction& prediction,
                                                         const Eigen::Matrix3d& velocity_information,

@@ -10,8 +10,8 @@
 
 namespace gridslam::scan_matching {
 
-/// The wide search run when the odometry is doubtful or missing and neither prediction explains
-/// the scan (correlative_search.hpp): a coarse lattice of +-linear_window, +-angular_window around
+/// The wide search run when the odometry is missing and the constant velocity explains the scan
+/// poorly (correlative_search.hpp): a coarse lattice of +-linear_window, +-angular_window around
 /// the constant-velocity prediction; the best `candidates` distinct lattice poses are refined and
 /// the best-scoring refinement wins.
 struct WideSearchOptions {
@@ -26,7 +26,7 @@ struct WideSearchOptions {
 
   template <class V>
   void Visit(V& v) {
-    v("enabled", enabled, "Search widely when the odometry is doubtful or missing");
+    v("enabled", enabled, "Search widely when there is no odometry and the match is poor");
     v("linear_window", linear_window, "Half-width of the wide search in x and y [m]");
     v("linear_step", linear_step, "Translation step of its lattice [cells]");
     v("angular_window", angular_window, "Half-width of the wide search in yaw [rad]");
