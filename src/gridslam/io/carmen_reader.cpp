@@ -443,21 +443,7 @@ Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOp
   if (!reader.ok()) {
     return reader.error();
   }
-  std::vector<Frame> frames;
-  while (true) {
-    auto next = reader.value().Next();
-    if (!next.ok()) {
-      return next.error();
-    }
-    if (!next.value()) {
-      break;
-    }
-    frames.push_back(std::move(*next.value()));
-  }
-  if (stats != nullptr) {
-    *stats = reader.value().Stats();
-  }
-  return frames;
+  return ReadAllFrames(reader.value(), stats);
 }
 
 Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOptions& options) {

@@ -72,6 +72,27 @@ class CarmenReader {
 /// unknown types): InvalidInput naming the file and what it did hold.
 Error NoScansError(const std::string& path, const CarmenStats& stats);
 
+/// Every frame of an open `reader` (CarmenReader or any reader with the same Next() and Stats()),
+/// and its statistics into `stats` (may be null).
+template <class Reader>
+Result<std::vector<Frame>> ReadAllFrames(Reader& reader, CarmenStats* stats) {
+  std::vector<Frame> frames;
+  while (true) {
+    auto next = reader.Next();
+    if (!next.ok()) {
+      return next.error();
+    }
+    if (!next.value()) {
+      break;
+    }
+    frames.push_back(std::move(*next.value()));
+  }
+  if (stats != nullptr) {
+    *stats = reader.Stats();
+  }
+  return frames;
+}
+
 /// Reads a whole log into memory (convenience for tests and small logs).
 Result<std::vector<Frame>> ReadCarmenLog(const std::string& path, const CarmenOptions& options);
 

@@ -176,21 +176,7 @@ Result<std::vector<Frame>> ReadRecording(const std::string& path, const Recordin
   if (!reader.ok()) {
     return reader.error();
   }
-  std::vector<Frame> frames;
-  while (true) {
-    auto next = reader.value().Next();
-    if (!next.ok()) {
-      return next.error();
-    }
-    if (!next.value()) {
-      break;
-    }
-    frames.push_back(std::move(*next.value()));
-  }
-  if (stats != nullptr) {
-    *stats = reader.value().Stats();
-  }
-  return frames;
+  return io::ReadAllFrames(reader.value(), stats);
 }
 
 }  // namespace gridslam::recording

@@ -67,11 +67,6 @@ struct MotionPrediction {
   OdometryCheck check = OdometryCheck::kConsistent;
   double innovation_xy = 0.0;     ///< |odometry - constant velocity|, translation [m].
   double innovation_theta = 0.0;  ///< ... yaw [rad].
-
-  /// The prediction to trust: the odometry unless it is doubtful or missing.
-  [[nodiscard]] const Pose2& Trusted() const {
-    return check == OdometryCheck::kConsistent ? odometry : constant_velocity;
-  }
 };
 
 class MotionCheck {

@@ -43,7 +43,7 @@ TEST_F(MotionCheckTest, SmoothMotionIsConsistent) {
   EXPECT_DOUBLE_EQ(check_.ThresholdTheta(), MotionCheckOptions{}.floor_theta);
 }
 
-TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityIsTrusted) {
+TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityHoldsTheTruth) {
   check_.Reset(At(0.0), odometry_, truth_);
   Drive(50);
   for (const Pose2& jump :
@@ -54,7 +54,7 @@ TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityIsT
     const MotionPrediction p = check_.Predict(At(t_), odometry_);
     EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
     // The velocity comes from the (noisy) odometry of the last second.
-    EXPECT_TRUE(IsApprox(p.Trusted(), truth_, 0.02, 0.01));
+    EXPECT_TRUE(IsApprox(p.constant_velocity, truth_, 0.02, 0.01));
     check_.Update(At(t_), odometry_, truth_, p, /*odometry_overruled=*/true);
     // The odometry carries on from the jumped pose: its next increments are fine again.
     Drive(5);
@@ -67,7 +67,7 @@ TEST_F(MotionCheckTest, MissingOdometryPredictsTheConstantVelocity) {
   const Pose2 expected = truth_ * Pose2(0.1, 0.0, 0.02);
   const MotionPrediction p = check_.Predict(At(t_ + 0.2), std::nullopt);
   EXPECT_EQ(p.check, OdometryCheck::kMissing);
-  EXPECT_TRUE(IsApprox(p.Trusted(), expected, 0.02, 0.01));
+  EXPECT_TRUE(IsApprox(p.constant_velocity, expected, 0.02, 0.01));
 }
 
 TEST_F(MotionCheckTest, NonFiniteOdometryIsDoubtful) {
@@ -76,7 +76,7 @@ TEST_F(MotionCheckTest, NonFiniteOdometryIsDoubtful) {
   const MotionPrediction p =
       check_.Predict(At(t_ + 0.2), Pose2(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0));
   EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
-  EXPECT_TRUE(p.Trusted().ToVector().allFinite());
+  EXPECT_TRUE(p.constant_velocity.ToVector().allFinite());
 }
 
 TEST(MotionCheck, TheThresholdGrowsWithTheRobotsDynamics) {
