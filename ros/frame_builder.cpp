@@ -56,6 +56,7 @@ Result<Frame> FrameBuilder::Build(const ScanInput& scan, bool* clamped) {
         return InvalidInput("scan without TF odometry");
       }
       frame.T_odom_base = PlanarOf(*scan.T_odom_base);
+      *clamped = scan.odometry_clamped;
       break;
     case OdometrySource::kTopic:
       if (samples_.empty()) {  // not a frame without odometry: odometry is on its way

@@ -5,6 +5,25 @@
 #include <nav_msgs/Path.h>
 
 namespace gridslam::live {
+namespace {
+
+// A map -> odom at a scan's stamp more than this older than the newest one published is not sent:
+// TF listeners (tf2's default cache: 10 s) would drop it as data from the past. Happens only
+// while the mapping lags behind ROS time (a burst of loop closures during fast playback).
+constexpr std::int64_t kTfLagWindowNs = 5'000'000'000;
+
+// A scan newer than the newest odometry takes it when at most this much newer (end of a recording).
+constexpr double kMaxOdometryClamp = 0.5;  // [s]
+
+// Raises `newest` to `stamp`; returns the previous value.
+std::int64_t RaiseTo(std::atomic<std::int64_t>& newest, std::int64_t stamp) {
+  std::int64_t previous = newest.load();
+  while (previous < stamp && !newest.compare_exchange_weak(previous, stamp)) {
+  }
+  return previous;
+}
+
+}  // namespace
 
 GridslamNode::GridslamNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(std::move(nh)), private_nh_(std::move(private_nh)) {}
@@ -81,6 +100,25 @@ std::optional<Transform3D> GridslamNode::WaitForTransform(const std::string& tar
   }
 }
 
+void GridslamNode::LookUpOdometry(const ros::Time& stamp, ScanInput* scan) {
+  scan->T_odom_base =
+      WaitForTransform(params_.odom_frame, params_.base_frame, stamp, params_.tf_timeout);
+  if (scan->T_odom_base) {
+    return;
+  }
+  try {
+    const geometry_msgs::TransformStamped newest =
+        tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
+    const double ahead = (stamp - newest.header.stamp).toSec();
+    if (ahead > 0.0 && ahead <= kMaxOdometryClamp) {
+      scan->T_odom_base = ToTransform3D(newest.transform);
+      scan->odometry_clamped = true;
+    }
+  } catch (const tf2::TransformException& /*e*/) {
+    // no odometry at all: the caller says so
+  }
+}
+
 Transform3D GridslamNode::Mounting(const std::string& laser_frame) {
   const auto known = mountings_.find(laser_frame);
   if (known != mountings_.end()) {
@@ -106,15 +144,15 @@ void GridslamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   ScanInput scan = ToScanInput(*msg);
   scan.T_base_laser = Mounting(StripSlash(msg->header.frame_id));
   if (params_.core.odometry == OdometrySource::kTf) {
-    scan.T_odom_base = WaitForTransform(params_.odom_frame, params_.base_frame, msg->header.stamp,
-                                        params_.tf_timeout);
+    LookUpOdometry(msg->header.stamp, &scan);
     if (!scan.T_odom_base) {
-      ++tf_misses_;
+      core_->SkipScan();
       ROS_WARN_THROTTLE(5.0,
                         "gridslam_node: no TF %s -> %s at the scan's stamp %.6f within %.2f s: "
                         "scan skipped (%ld so far)",
                         params_.odom_frame.c_str(), params_.base_frame.c_str(),
-                        msg->header.stamp.toSec(), params_.tf_timeout, tf_misses_.load());
+                        msg->header.stamp.toSec(), params_.tf_timeout,
+                        core_->Progress().scans_skipped);
       return;
     }
   }
@@ -131,19 +169,24 @@ void GridslamNode::OnTfTimer(const ros::WallTimerEvent& /*event*/) {
   if (now.isZero() || !core_->LatestPose(&pose)) {  // no /clock yet, or nothing mapped yet
     return;
   }
-  tf_broadcaster_.sendTransform(ToTransformStamped(
-      pose, params_.map_frame, ChildFrame(), now + ros::Duration(params_.transform_tolerance)));
+  const ros::Time stamp = now + ros::Duration(params_.transform_tolerance);
+  if (RaiseTo(newest_tf_ns_, ToNanoseconds(stamp)) >= ToNanoseconds(stamp)) {
+    return;  // the clock stands still (paused or ended playback): nothing new to say
+  }
+  tf_broadcaster_.sendTransform(ToTransformStamped(pose, params_.map_frame, ChildFrame(), stamp));
 }
 
 void GridslamNode::PublishPose(std::int64_t stamp_ns, const PlanarPose& T_map_odom) {
-  tf_broadcaster_.sendTransform(
-      ToTransformStamped(T_map_odom, params_.map_frame, ChildFrame(), ToRosTime(stamp_ns)));
+  if (RaiseTo(newest_tf_ns_, stamp_ns) - kTfLagWindowNs < stamp_ns) {
+    tf_broadcaster_.sendTransform(
+        ToTransformStamped(T_map_odom, params_.map_frame, ChildFrame(), ToRosTime(stamp_ns)));
+  }
   const CoreProgress s = core_->Progress();
   if (s.scans_mapped % 1000 == 0) {
     ROS_INFO(
         "gridslam_node: %ld scans mapped (%ld queued, %ld dropped, %ld without TF), "
         "%ld key maps, %ld loop closures",
-        s.scans_mapped, s.scans_queued, s.scans_dropped, tf_misses_.load(), s.key_maps,
+        s.scans_mapped, s.scans_queued, s.scans_dropped, s.scans_skipped, s.key_maps,
         s.loop_closures);
   }
 }
@@ -171,7 +214,7 @@ bool GridslamNode::OnFinish(std_srvs::Trigger::Request& /*request*/,
   ROS_INFO(
       "gridslam_node: finish: %s (%ld scans received, %ld mapped, %ld dropped, %ld without "
       "TF; %ld key maps, %ld loop closures)",
-      message.c_str(), s.scans_received, s.scans_mapped, s.scans_dropped, tf_misses_.load(),
+      message.c_str(), s.scans_received, s.scans_mapped, s.scans_dropped, s.scans_skipped,
       s.key_maps, s.loop_closures);
   return true;
 }

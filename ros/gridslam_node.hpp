@@ -44,6 +44,9 @@ class GridslamNode {
   /// target <- source at `stamp`, waiting up to `timeout` seconds of wall time for TF to have it.
   std::optional<Transform3D> WaitForTransform(const std::string& target, const std::string& source,
                                               const ros::Time& stamp, double timeout);
+  /// The odometry at a scan's stamp (WaitForTransform); when TF has nothing after the stamp, the
+  /// newest sample if it is at most kMaxOdometryClamp older (the bag reader's clamping).
+  void LookUpOdometry(const ros::Time& stamp, ScanInput* scan);
   /// base -> laser (static), looked up once per laser frame; identity with a warning if absent.
   Transform3D Mounting(const std::string& laser_frame);
   /// The child frame of the published transform: odom, or base without odometry.
@@ -63,7 +66,7 @@ class GridslamNode {
   ros::ServiceServer finish_srv_;
   ros::WallTimer tf_timer_;
   std::map<std::string, Transform3D> mountings_;
-  std::atomic<long> tf_misses_{0};
+  std::atomic<std::int64_t> newest_tf_ns_{0};  ///< Newest stamp of a published map -> odom.
   // Last, so that it goes first: its thread calls the publishers above until it is joined.
   std::unique_ptr<MappingCore> core_;
 };

@@ -40,6 +40,8 @@ struct ScanInput {
   /// TF odometry T_odom_base at the stamp; nullopt when the odometry comes from a topic
   /// (interpolated by the core) or there is none.
   std::optional<Transform3D> T_odom_base;
+  /// TF odometry: no sample after the stamp yet, T_odom_base is the newest (end of a recording).
+  bool odometry_clamped = false;
   Transform3D T_base_laser;  ///< Laser mounting (static TF base -> laser frame).
 };
 
@@ -75,6 +77,7 @@ struct CoreProgress {
   long scans_received = 0;
   long scans_mapped = 0;
   long scans_dropped = 0;  ///< Unusable scans (no beams, non-finite geometry) or after Finish.
+  long scans_skipped = 0;  ///< Scans without TF odometry at their stamp (SkipScan).
   long scans_without_odometry = 0;  ///< Topic odometry: clamped to the nearest sample.
   long scans_queued = 0;
   long key_maps = 0;

@@ -51,6 +51,8 @@ class MappingCore {
 
   /// Queues a scan (ignored after Finish).
   void AddScan(ScanInput scan);
+  /// Counts a scan the adapter could not use (no TF odometry at its stamp), for the report.
+  void SkipScan();
   /// Adds a topic odometry sample (samples in stamp order).
   void AddOdometry(const OdometryInput& odometry);
 

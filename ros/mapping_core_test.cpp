@@ -206,8 +206,8 @@ TEST(MappingCore, MapsLikeTheBatchMapperAndWritesTheSessionOutputs) {
   for (const Frame& f : simulated) {
     core->AddScan(ToInput(f, true));
   }
-  ASSERT_TRUE(
-      WaitFor([&] { return core->Progress().scans_mapped == static_cast<long>(simulated.size()); }));
+  ASSERT_TRUE(WaitFor(
+      [&] { return core->Progress().scans_mapped == static_cast<long>(simulated.size()); }));
   EXPECT_TRUE(core->LatestPose(&pose));
   ASSERT_TRUE(core->SaveMap(dir.string(), &message)) << message;
   auto saved = io::ReadMap((dir / "map.yaml").string());
@@ -291,6 +291,10 @@ TEST(MappingCore, TopicOdometryWaitsForALaterSample) {
   impatient->AddScan(ToInput(simulated[1], false));
   ASSERT_TRUE(WaitFor([&] { return impatient->Progress().scans_mapped == 1; }));
   EXPECT_EQ(impatient->Progress().scans_without_odometry, 1);
+  impatient->SkipScan();  // the adapter found no TF odometry: counted, not mapped
+  EXPECT_EQ(impatient->Progress().scans_skipped, 1);
+  EXPECT_EQ(impatient->Progress().scans_received, 2);
+  EXPECT_EQ(impatient->Progress().scans_mapped, 1);
 }
 
 }  // namespace

@@ -1,11 +1,26 @@
 #include "node_params.hpp"
 
+#include <algorithm>
+
 namespace gridslam::live {
 
 bool ReadNodeParams(const ros::NodeHandle& private_nh, NodeParams* params, std::string* error) {
   NodeParams& p = *params;
   private_nh.param("config", p.core.config_path, p.core.config_path);
-  private_nh.param("set", p.core.overrides, p.core.overrides);
+  // ~set: a list of "section.key=value" (rosparam, launch files) or, as `_set:=...` on the command
+  // line can only give a string, one string of assignments separated by ';'.
+  if (!private_nh.getParam("set", p.core.overrides)) {
+    std::string assignments;
+    private_nh.getParam("set", assignments);
+    std::size_t start = 0;
+    while (start < assignments.size()) {
+      const std::size_t end = std::min(assignments.find(';', start), assignments.size());
+      if (end > start) {
+        p.core.overrides.push_back(assignments.substr(start, end - start));
+      }
+      start = end + 1;
+    }
+  }
   private_nh.param("scan_topic", p.scan_topic, p.scan_topic);
   bool use_odom_topic = false;
   private_nh.param("use_odom_topic", use_odom_topic, use_odom_topic);
