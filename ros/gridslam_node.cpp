@@ -1,5 +1,7 @@
 #include "gridslam_node.hpp"
 
+#include <algorithm>
+
 #include "ros_conversions.hpp"
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
@@ -140,7 +142,28 @@ Transform3D GridslamNode::Mounting(const std::string& laser_frame) {
   return T_base_laser;
 }
 
+void GridslamNode::CountLostScans(std::uint32_t seq) {
+  if (!first_seq_ || seq < *first_seq_) {  // the first scan, or a new publisher (seq restarted)
+    lost_before_ = scans_lost_;
+    first_seq_ = seq;
+    max_seq_ = seq;
+    scans_seen_ = 0;
+  }
+  max_seq_ = std::max(max_seq_, seq);
+  ++scans_seen_;
+  const long lost =
+      lost_before_ + std::max(0L, static_cast<long>(max_seq_ - *first_seq_) + 1 - scans_seen_);
+  if (lost > scans_lost_) {
+    scans_lost_ = lost;
+    ROS_WARN_THROTTLE(5.0,
+                      "gridslam_node: %ld scans lost before the node saw them (gaps in "
+                      "header.seq): the subscriber queue overflowed; raise ~scan_queue_size",
+                      lost);
+  }
+}
+
 void GridslamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
+  CountLostScans(msg->header.seq);
   ScanInput scan = ToScanInput(*msg);
   scan.T_base_laser = Mounting(StripSlash(msg->header.frame_id));
   if (params_.core.odometry == OdometrySource::kTf) {

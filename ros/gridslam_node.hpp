@@ -49,6 +49,8 @@ class GridslamNode {
   void LookUpOdometry(const ros::Time& stamp, ScanInput* scan);
   /// base -> laser (static), looked up once per laser frame; identity with a warning if absent.
   Transform3D Mounting(const std::string& laser_frame);
+  /// Counts the scans that never reached OnScan; warns when there are new ones.
+  void CountLostScans(std::uint32_t seq);
   /// The child frame of the published transform: odom, or base without odometry.
   [[nodiscard]] const std::string& ChildFrame() const;
 
@@ -67,6 +69,12 @@ class GridslamNode {
   ros::WallTimer tf_timer_;
   std::map<std::string, Transform3D> mountings_;
   std::atomic<std::int64_t> newest_tf_ns_{0};  ///< Newest stamp of a published map -> odom.
+  // Scans lost before OnScan (the subscriber queue overflowed), from the gaps in header.seq.
+  std::optional<std::uint32_t> first_seq_;
+  std::uint32_t max_seq_ = 0;
+  long scans_seen_ = 0;
+  long lost_before_ = 0;
+  std::atomic<long> scans_lost_{0};
   // Last, so that it goes first: its thread calls the publishers above until it is joined.
   std::unique_ptr<MappingCore> core_;
 };
