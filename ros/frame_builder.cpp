@@ -1,6 +1,7 @@
 #include "frame_builder.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "gridslam/recording/ros_messages.hpp"
 
@@ -12,14 +13,15 @@ constexpr std::int64_t kKeepOdometryNs = 10'000'000'000;  // 10 s
 
 }  // namespace
 
-Pose2 PlanarOf(const Transform3D& T) {
-  return {T.x, T.y, recording::YawOfQuaternion(T.qx, T.qy, T.qz, T.qw)};
+Pose2 PlanarOf(const Transform3D& T_parent_child) {
+  const Transform3D& t = T_parent_child;
+  return {t.x, t.y, recording::YawOfQuaternion(t.qx, t.qy, t.qz, t.qw)};
 }
 
 PlanarPose ToPlanar(const Pose2& pose) { return {pose.x(), pose.y(), pose.theta()}; }
 
-FrameBuilder::FrameBuilder(const io::CarmenOptions& log, OdometrySource source)
-    : log_(log), source_(source) {}
+FrameBuilder::FrameBuilder(io::CarmenOptions log, OdometrySource source)
+    : log_(std::move(log)), source_(source) {}
 
 void FrameBuilder::AddOdometry(const OdometryInput& odometry) {
   const recording::OdometrySample sample{odometry.stamp_ns, PlanarOf(odometry.T_odom_base), 0};

@@ -19,12 +19,12 @@
 namespace gridslam::live {
 
 /// T_parent_child of a 3D transform reduced to the plane (x, y, yaw).
-Pose2 PlanarOf(const Transform3D& T);
+Pose2 PlanarOf(const Transform3D& T_parent_child);
 PlanarPose ToPlanar(const Pose2& pose);
 
 class FrameBuilder {
  public:
-  FrameBuilder(const io::CarmenOptions& log, OdometrySource source);
+  FrameBuilder(io::CarmenOptions log, OdometrySource source);
 
   /// A topic odometry sample. Samples older than the newest are inserted in stamp order.
   void AddOdometry(const OdometryInput& odometry);

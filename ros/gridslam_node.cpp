@@ -27,8 +27,8 @@ std::int64_t RaiseTo(std::atomic<std::int64_t>& newest, std::int64_t stamp) {
 
 }  // namespace
 
-GridslamNode::GridslamNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(std::move(nh)), private_nh_(std::move(private_nh)) {}
+GridslamNode::GridslamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
+    : nh_(nh), private_nh_(private_nh) {}
 
 bool GridslamNode::Start() {
   std::string error;
@@ -128,9 +128,9 @@ Transform3D GridslamNode::Mounting(const std::string& laser_frame) {
   }
   Transform3D T_base_laser;
   if (laser_frame != params_.base_frame) {
-    if (auto T = WaitForTransform(params_.base_frame, laser_frame, ros::Time(0),
-                                  params_.mounting_timeout)) {
-      T_base_laser = *T;
+    if (auto found = WaitForTransform(params_.base_frame, laser_frame, ros::Time(0),
+                                      params_.mounting_timeout)) {
+      T_base_laser = *found;
       ROS_INFO("gridslam_node: laser mounting %s -> %s: x %.4f m, y %.4f m",
                params_.base_frame.c_str(), laser_frame.c_str(), T_base_laser.x, T_base_laser.y);
     } else {
@@ -222,7 +222,7 @@ void GridslamNode::PublishMap(const GridOutput& map, const std::vector<StampedPo
 bool GridslamNode::OnSaveMap(std_srvs::Trigger::Request& /*request*/,
                              std_srvs::Trigger::Response& response) {
   std::string message;
-  response.success = core_->SaveMap(OutputDir(private_nh_, params_), &message);
+  response.success = core_->SaveMap(OutputDir(private_nh_, params_), &message) ? 1 : 0;
   response.message = message;
   ROS_INFO("gridslam_node: save_map: %s", message.c_str());
   return true;
@@ -231,7 +231,7 @@ bool GridslamNode::OnSaveMap(std_srvs::Trigger::Request& /*request*/,
 bool GridslamNode::OnFinish(std_srvs::Trigger::Request& /*request*/,
                             std_srvs::Trigger::Response& response) {
   std::string message;
-  response.success = core_->Finish(OutputDir(private_nh_, params_), &message);
+  response.success = core_->Finish(OutputDir(private_nh_, params_), &message) ? 1 : 0;
   response.message = message;
   const CoreProgress s = core_->Progress();
   ROS_INFO(

@@ -26,7 +26,7 @@ namespace gridslam::live {
 
 class GridslamNode {
  public:
-  GridslamNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  GridslamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
   /// Reads the parameters and the gridslam configuration, subscribes and advertises. False (with
   /// a ROS_FATAL message) when the configuration is unusable.
   bool Start();

@@ -48,6 +48,8 @@ class MappingCore {
   ~MappingCore();
   MappingCore(const MappingCore&) = delete;
   MappingCore& operator=(const MappingCore&) = delete;
+  MappingCore(MappingCore&&) = delete;
+  MappingCore& operator=(MappingCore&&) = delete;
 
   /// Queues a scan (ignored after Finish).
   void AddScan(ScanInput scan);

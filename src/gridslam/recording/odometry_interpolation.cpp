@@ -23,7 +23,7 @@ Pose2 InterpolateOdometry(std::span<const OdometrySample> samples, std::int64_t 
   } else {
     const OdometrySample& b = *it;
     const OdometrySample& a = *(it - 1);
-    const double span = static_cast<double>(b.stamp_ns - a.stamp_ns);
+    const auto span = static_cast<double>(b.stamp_ns - a.stamp_ns);
     const double u = span > 0.0 ? static_cast<double>(stamp_ns - a.stamp_ns) / span : 0.0;
     const Eigen::Vector2d p = (1.0 - u) * a.pose.translation() + u * b.pose.translation();
     const double dtheta = NormalizeAngle(b.pose.theta() - a.pose.theta());
