@@ -14,6 +14,11 @@ namespace {
 // while the mapping lags behind ROS time (a burst of loop closures during fast playback).
 constexpr std::int64_t kTfLagWindowNs = 5'000'000'000;
 
+// How much TF the node keeps: a scan whose stamp is older than the newest odometry by more than
+// this is skipped at once (the data it needs is gone). Long, so that scans queued behind a slow
+// callback (the first scan's mounting wait, a service) at 20x playback still find their odometry.
+constexpr double kTfCacheSeconds = 120.0;
+
 // A scan newer than the newest odometry takes it when at most this much newer (end of a recording).
 constexpr double kMaxOdometryClamp = 0.5;  // [s]
 
@@ -28,7 +33,7 @@ std::int64_t RaiseTo(std::atomic<std::int64_t>& newest, std::int64_t stamp) {
 }  // namespace
 
 GridslamNode::GridslamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
-    : nh_(nh), private_nh_(private_nh) {}
+    : nh_(nh), private_nh_(private_nh), tf_buffer_(ros::Duration(kTfCacheSeconds)) {}
 
 bool GridslamNode::Start() {
   std::string error;
@@ -54,7 +59,7 @@ bool GridslamNode::Start() {
     ROS_FATAL("gridslam_node: configuration: %s", error.c_str());
     return false;
   }
-  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_, nh_);
+  tf_subscriber_ = std::make_unique<TfSubscriber>(&tf_buffer_, params_.map_frame, ChildFrame());
   scan_sub_ = nh_.subscribe(params_.scan_topic, static_cast<std::uint32_t>(params_.scan_queue_size),
                             &GridslamNode::OnScan, this);
   const char* odometry = "TF";
@@ -103,17 +108,26 @@ std::optional<Transform3D> GridslamNode::WaitForTransform(const std::string& tar
 }
 
 void GridslamNode::LookUpOdometry(const ros::Time& stamp, ScanInput* scan) {
+  // The newest odometry: a scan older than the cache is skipped without waiting.
+  std::optional<geometry_msgs::TransformStamped> newest;
+  try {
+    newest = tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
+  } catch (const tf2::TransformException& /*e*/) {
+    // none yet: wait below
+  }
+  if (newest && (newest->header.stamp - stamp).toSec() > kTfCacheSeconds - 1.0) {
+    return;
+  }
   scan->T_odom_base =
       WaitForTransform(params_.odom_frame, params_.base_frame, stamp, params_.tf_timeout);
   if (scan->T_odom_base) {
     return;
   }
   try {
-    const geometry_msgs::TransformStamped newest =
-        tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
-    const double ahead = (stamp - newest.header.stamp).toSec();
+    newest = tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
+    const double ahead = (stamp - newest->header.stamp).toSec();
     if (ahead > 0.0 && ahead <= kMaxOdometryClamp) {
-      scan->T_odom_base = ToTransform3D(newest.transform);
+      scan->T_odom_base = ToTransform3D(newest->transform);
       scan->odometry_clamped = true;
     }
   } catch (const tf2::TransformException& /*e*/) {
@@ -143,21 +157,13 @@ Transform3D GridslamNode::Mounting(const std::string& laser_frame) {
 }
 
 void GridslamNode::CountLostScans(std::uint32_t seq) {
-  if (!first_seq_ || seq < *first_seq_) {  // the first scan, or a new publisher (seq restarted)
-    lost_before_ = scans_lost_;
-    first_seq_ = seq;
-    max_seq_ = seq;
-    scans_seen_ = 0;
-  }
-  max_seq_ = std::max(max_seq_, seq);
-  ++scans_seen_;
-  const long lost =
-      lost_before_ + std::max(0L, static_cast<long>(max_seq_ - *first_seq_) + 1 - scans_seen_);
+  const long lost = sequence_gaps_.Add(seq);
   if (lost > scans_lost_) {
     scans_lost_ = lost;
     ROS_WARN_THROTTLE(5.0,
                       "gridslam_node: %ld scans lost before the node saw them (gaps in "
-                      "header.seq): the subscriber queue overflowed; raise ~scan_queue_size",
+                      "header.seq): a queue overflowed (raise ~scan_queue_size; playing a bag "
+                      "fast: rosbag play --queue)",
                       lost);
   }
 }

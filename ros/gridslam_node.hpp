@@ -14,13 +14,15 @@
 
 #include "mapping_core.hpp"
 #include "node_params.hpp"
+#include "sequence_gaps.hpp"
+#include "tf_subscriber.hpp"
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_srvs/Trigger.h>
-#include <tf2_ros/buffer.h>
+#include <tf2/buffer_core.h>
+#include <tf2/exceptions.h>
 #include <tf2_ros/transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
 
 namespace gridslam::live {
 
@@ -57,8 +59,8 @@ class GridslamNode {
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   NodeParams params_;
-  tf2_ros::Buffer tf_buffer_;
-  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  tf2::BufferCore tf_buffer_;  ///< kTfCacheSeconds of transforms.
+  std::unique_ptr<TfSubscriber> tf_subscriber_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Subscriber scan_sub_;
   ros::Subscriber odom_sub_;
@@ -70,10 +72,7 @@ class GridslamNode {
   std::map<std::string, Transform3D> mountings_;
   std::atomic<std::int64_t> newest_tf_ns_{0};  ///< Newest stamp of a published map -> odom.
   // Scans lost before OnScan (the subscriber queue overflowed), from the gaps in header.seq.
-  std::optional<std::uint32_t> first_seq_;
-  std::uint32_t max_seq_ = 0;
-  long scans_seen_ = 0;
-  long lost_before_ = 0;
+  SequenceGaps sequence_gaps_;
   std::atomic<long> scans_lost_{0};
   // Last, so that it goes first: its thread calls the publishers above until it is joined.
   std::unique_ptr<MappingCore> core_;

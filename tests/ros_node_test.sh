@@ -71,10 +71,11 @@ map_bag() {
   scans=$("$cli_bin" info "$bag" 2> /dev/null | sed -n 's/^  scans: \([0-9]*\) over.*/\1/p')
   [ -n "$scans" ] || fail "$name: cannot count the scans of $bag"
 
-  # ~tf_timeout 2 s: intel's odometry pauses for up to 3.1 s (of bag time) near its end; at 20x
-  # a scan in such a pause waits up to 0.16 s of wall time for the sample after it.
+  # Nothing may depend on the machine's load (ctest runs other tests beside this one): generous
+  # waits for the odometry after a scan's stamp (wall time; intel's odometry pauses for up to
+  # 3.1 s of bag time near its end) and queues that never overflow (rosbag play's --queue too).
   ros_session_spawn "$dir/node.log" "$node_bin" _output_dir:="$dir/out" \
-    _map_publish_period:=30 _tf_timeout:=2.0 "$@"
+    _map_publish_period:=30 _tf_timeout:=10.0 _odom_timeout:=10.0 _scan_queue_size:=100000 "$@"
   local node_pid="$ROS_SESSION_PID"
   ros_session_wait_service /gridslam_node/finish 60 ||
     { show_log "$dir/node.log"; fail "$name: gridslam_node's services did not appear within 60 s"; }
@@ -89,7 +90,8 @@ map_bag() {
 
   echo "ros_node_test: $name: rosbag play -r $rate $(basename "$bag") ($scans scans)"
   local start=$SECONDS
-  timeout 900 rosbag play --clock -q -r "$rate" "$bag" > "$dir/play.log" 2>&1 < /dev/null ||
+  timeout 900 rosbag play --clock -q --queue=100000 -r "$rate" "$bag" > "$dir/play.log" 2>&1 \
+    < /dev/null ||
     { show_log "$dir/play.log"; fail "$name: rosbag play failed or timed out"; }
   echo "ros_node_test: $name: played in $((SECONDS - start)) s"
   sleep 3  # the last scans in flight
