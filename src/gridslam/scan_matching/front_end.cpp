@@ -292,6 +292,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
+        stats_.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
+        stats_.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
         // A doubtful increment the scan did not overrule was matched with the odometry's prior:
         // its correction is a sample of the odometry's noise like any other.
         if (trusted || (!missing && !step.odometry_overruled)) {

@@ -10,6 +10,7 @@
 #include "gridslam/common/check.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/scan_matching/correlative_search.hpp"
+#include "gridslam/scan_matching/degeneracy.hpp"
 
 namespace gridslam::scan_matching {
 namespace {
@@ -50,6 +51,8 @@ Status ScanMatcherOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(point_sigma > 0.0, "matcher.point_sigma > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_points >= 3, "matcher.min_points >= 3"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_correspondences >= 3, "matcher.min_correspondences >= 3"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(min_constraining_points >= 0.0, "matcher.min_constraining_points >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(inlier_distance > 0.0, "matcher.inlier_distance > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(search_linear_window >= 0.0 && search_angular_window >= 0.0,
                                    "matcher search windows >= 0"));
@@ -81,6 +84,9 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
       << "the point_to_line residual needs a map that tracks surfaces";
   const CellSurface* surfaces = map.Surfaces();
 
+  const Eigen::LDLT<Eigen::Matrix3d> prior_ldlt(prior_information);
+  const bool prior_positive = prior_ldlt.info() == Eigen::Success && prior_ldlt.isPositive() &&
+                              prior_ldlt.vectorD().minCoeff() > 0.0;
   Eigen::Vector3d x = start.ToVector();
   MatchResult result;
   LinearSystem system;
@@ -152,6 +158,13 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
                                   -gradient.x() * dy + gradient.y() * dx);
           system.Add(J, d, inv_var * CauchyWeight(d, scale));
         }
+      }
+      // Directions the scan hardly constrains (along a corridor) are the prior's alone; without
+      // a prior (zero information) there is nothing else to carry them.
+      if (prior_positive) {
+        result.degeneracy =
+            RemoveDegenerateDirections(options_.point_sigma * options_.point_sigma,
+                                       options_.min_constraining_points, &system.H, &system.g);
       }
       const Eigen::Vector3d prior_error(x.x() - prior.x(), x.y() - prior.y(),
                                         NormalizeAngle(x.z() - prior.theta()));

@@ -20,6 +20,7 @@
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/grid/rolling_window.hpp"
 #include "gridslam/grid/scan_points.hpp"
+#include "gridslam/scan_matching/degeneracy.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
 #include "gridslam/scan_matching/scan_matcher_options.hpp"
 
@@ -34,6 +35,8 @@ struct MatchResult {
   bool converged = false;   ///< The last stage converged before max_iterations.
   bool searched = false;    ///< The correlative search ran.
   bool ok = false;          ///< Enough correspondences; otherwise the pose is the prior.
+  /// The translation directions the scan left to the prior at the last iteration (degeneracy.hpp).
+  DegeneracyResult degeneracy;
 };
 
 class ScanMatcher {

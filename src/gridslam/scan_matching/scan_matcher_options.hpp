@@ -26,7 +26,13 @@ struct ScanMatcherOptions {
   double convergence_rotation = 1e-4;     ///< ... and [rad].
   int min_points = 20;                    ///< Fewer returns: the frame falls back to odometry.
   int min_correspondences = 15;           ///< Fewer matched points: the match is rejected.
-  double inlier_distance = 0.1;           ///< Points this close to the map count in the score [m].
+  /// A translation direction constrained by fewer effective points (the scan's Hessian times
+  /// point_sigma^2, yaw marginalized: an inlier on a wall facing the direction counts about one)
+  /// is degenerate, and the prior carries the estimate along it (degeneracy.hpp). Chosen on the
+  /// whole robustness matrix (docs/robustness.md): a long corridor's axis collects 0.1-3 such
+  /// points; 15 also froze real constraints of the simulated rooms. 0 disables [-].
+  double min_constraining_points = 3.0;
+  double inlier_distance = 0.1;  ///< Points this close to the map count in the score [m].
   double good_score = 0.5;  ///< A score below this after refining the prior triggers the search.
   bool correlative_search = true;       ///< Enable the coarse search for poor priors.
   double search_linear_window = 0.3;    ///< Half-width of the search in x and y [m].
@@ -52,6 +58,9 @@ struct ScanMatcherOptions {
     v("min_points", min_points, "Scans with fewer returns fall back to odometry");
     v("min_correspondences", min_correspondences,
       "Matches with fewer matched points are rejected (fall back to odometry)");
+    v("min_constraining_points", min_constraining_points,
+      "Translation directions constrained by fewer effective points are left to the prior "
+      "(degenerate, e.g. along a corridor); 0 disables [-]");
     v("inlier_distance", inlier_distance, "Points this close to the map count in the score [m]");
     v("good_score", good_score,
       "Below this score (fraction of points near the map) the correlative search runs");
