@@ -39,6 +39,11 @@ struct MatchResult {
   DegeneracyResult degeneracy;
 };
 
+/// Where the prior comes from: a measurement of the motion (odometry), which carries the estimate
+/// along the directions the scan leaves degenerate, or a motion model (constant velocity), which
+/// does not: there the scan's few points are better than a guess.
+enum class PriorKind { kMeasured, kMotionModel };
+
 class ScanMatcher {
  public:
   /// `options` must be valid (Validate()).
@@ -49,12 +54,14 @@ class ScanMatcher {
   /// deviations in the odometry frame (may be zero). Thread-compatible (const, no state).
   [[nodiscard]] MatchResult Match(const RollingWindow& map, const MatchingField& field,
                                   const ScanPoints& scan, const Pose2& T_odom_base_prior,
-                                  const Eigen::Matrix3d& prior_information) const;
+                                  const Eigen::Matrix3d& prior_information,
+                                  PriorKind prior_kind = PriorKind::kMeasured) const;
 
   /// Gauss-Newton refinement alone, from `start`, with the prior centred on `prior`.
   [[nodiscard]] MatchResult Refine(const RollingWindow& map, const MatchingField& field,
                                    const ScanPoints& scan, const Pose2& start, const Pose2& prior,
-                                   const Eigen::Matrix3d& prior_information) const;
+                                   const Eigen::Matrix3d& prior_information,
+                                   PriorKind prior_kind = PriorKind::kMeasured) const;
 
   /// The score (see MatchResult::score) of `scan` at `pose`, and the number of matched points.
   [[nodiscard]] double Score(const RollingWindow& map, const MatchingField& field,

@@ -161,7 +161,8 @@ TEST(ScanMatcher, CorridorAxisIsLeftToTheOdometryPrior) {
   ASSERT_TRUE(result.ok);
   EXPECT_EQ(result.degeneracy.degenerate_directions, 1);
   EXPECT_GT(std::abs(result.degeneracy.weakest_direction.x()), 0.99);
-  EXPECT_LT(result.degeneracy.weakest_points, matcher_options.min_constraining_points);
+  EXPECT_LT(result.degeneracy.weakest_points,
+            matcher_options.degenerate_fraction * result.correspondences);
   EXPECT_NEAR(result.T_odom_base.x(), predicted.x(), 1e-3);
   EXPECT_NEAR(result.T_odom_base.y(), 0.1, 0.03);
   EXPECT_NEAR(result.T_odom_base.theta(), 0.05, DegToRad(0.5));
@@ -169,7 +170,7 @@ TEST(ScanMatcher, CorridorAxisIsLeftToTheOdometryPrior) {
   EXPECT_NEAR(result.covariance(0, 0), 1.0 / information, 0.1 / information);
 
   // The test off: the scan's few points along the axis claim more than the prior knows.
-  matcher_options.min_constraining_points = 0.0;
+  matcher_options.degenerate_fraction = 0.0;
   const MatchResult free =
       ScanMatcher(matcher_options).Match(window, field, scan, predicted, prior);
   ASSERT_TRUE(free.ok);
