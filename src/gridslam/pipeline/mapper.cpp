@@ -38,6 +38,10 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   stats.odometry_missing += step.odometry == scan_matching::OdometryCheck::kMissing ? 1 : 0;
   stats.odometry_overruled += step.odometry_overruled ? 1 : 0;
   stats.wide_searches += step.wide_search ? 1 : 0;
+  if (step.status == scan_matching::FrameStatus::kMatched) {
+    stats.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
+    stats.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
+  }
   if (state.last_pose.has_value()) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
   }

@@ -22,6 +22,9 @@ constexpr double kScoreMargin = 0.05;
 // Two refinements this close converged to the same optimum (a few cells, half a degree).
 constexpr double kSamePoseXy = 0.1;
 constexpr double kSamePoseTheta = 0.01;
+// The constant-velocity prediction is a guess, not a measurement: it carries no degenerate
+// direction of a match (scan_matcher.hpp).
+constexpr PriorKind kModel = PriorKind::kMotionModel;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -158,7 +161,7 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     const MatchResult from_odometry =
         matcher_.Match(*window_, field_, points, prediction.odometry, odometry_information);
     const MatchResult from_velocity =
-        matcher_.Match(*window_, field_, points, centre, velocity_information);
+        matcher_.Match(*window_, field_, points, centre, velocity_information, kModel);
     const Pose2 difference = Between(from_velocity.T_odom_base, from_odometry.T_odom_base);
     const bool same = difference.translation().norm() < kSamePoseXy &&
                       std::abs(difference.theta()) < kSamePoseTheta;
@@ -171,7 +174,7 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // halls the scan barely constrains (fr-clinic).
     return overrule ? from_velocity : from_odometry;
   }
-  MatchResult best = matcher_.Match(*window_, field_, points, centre, velocity_information);
+  MatchResult best = matcher_.Match(*window_, field_, points, centre, velocity_information, kModel);
   if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
@@ -194,7 +197,7 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // lattice pose the scan prefers. A pose far from both predictions must explain the scan
     // well.
     MatchResult refined = matcher_.Refine(*window_, field_, points, start.T_odom_base,
-                                          start.T_odom_base, velocity_information);
+                                          start.T_odom_base, velocity_information, kModel);
     if (refined.ok && refined.score >= good &&
         (!best.ok || refined.score > best.score + kScoreMargin)) {
       refined.searched = true;
@@ -292,6 +295,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
         ++stats_.matched;
+        stats_.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
+        stats_.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
         // A doubtful increment the scan did not overrule was matched with the odometry's prior:
         // its correction is a sample of the odometry's noise like any other.
         if (trusted || (!missing && !step.odometry_overruled)) {

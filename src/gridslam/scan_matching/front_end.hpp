@@ -62,6 +62,9 @@ struct FrontEndStats {
   long odometry_missing = 0;   ///< Frames without odometry.
   long wide_searches = 0;
   long odometry_overruled = 0;  ///< Doubtful increments the scan match replaced.
+  /// Matched frames whose scan left one / both translation directions to the prior.
+  long degenerate_one = 0;
+  long degenerate_both = 0;
   long insertions = 0;
   long key_maps = 0;
   long field_rebuilds = 0;

@@ -10,6 +10,7 @@
 #include "gridslam/common/check.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/scan_matching/correlative_search.hpp"
+#include "gridslam/scan_matching/degeneracy.hpp"
 
 namespace gridslam::scan_matching {
 namespace {
@@ -50,6 +51,8 @@ Status ScanMatcherOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(point_sigma > 0.0, "matcher.point_sigma > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_points >= 3, "matcher.min_points >= 3"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_correspondences >= 3, "matcher.min_correspondences >= 3"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(degenerate_fraction >= 0.0 && degenerate_fraction < 0.5,
+                                   "0 <= matcher.degenerate_fraction < 0.5"));
   GRIDSLAM_RETURN_IF_ERROR(Require(inlier_distance > 0.0, "matcher.inlier_distance > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(search_linear_window >= 0.0 && search_angular_window >= 0.0,
                                    "matcher search windows >= 0"));
@@ -66,7 +69,8 @@ ScanMatcher::ScanMatcher(const ScanMatcherOptions& options)
 
 MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& field,
                                 const ScanPoints& scan, const Pose2& start, const Pose2& prior,
-                                const Eigen::Matrix3d& prior_information) const {
+                                const Eigen::Matrix3d& prior_information,
+                                PriorKind prior_kind) const {
   const MapLimits& limits = field.Limits();
   const double res = limits.Resolution();
   const double ox = limits.Origin().x();
@@ -81,6 +85,9 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
       << "the point_to_line residual needs a map that tracks surfaces";
   const CellSurface* surfaces = map.Surfaces();
 
+  const Eigen::LDLT<Eigen::Matrix3d> prior_ldlt(prior_information);
+  const bool prior_positive = prior_ldlt.info() == Eigen::Success && prior_ldlt.isPositive() &&
+                              prior_ldlt.vectorD().minCoeff() > 0.0;
   Eigen::Vector3d x = start.ToVector();
   MatchResult result;
   LinearSystem system;
@@ -152,6 +159,14 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
                                   -gradient.x() * dy + gradient.y() * dx);
           system.Add(J, d, inv_var * CauchyWeight(d, scale));
         }
+      }
+      // Directions the scan hardly constrains (along a corridor) are the prior's alone when the
+      // prior measures the motion; without a prior (zero information), or with a motion model
+      // for one, nothing better than the scan's few points carries them.
+      if (prior_positive && prior_kind == PriorKind::kMeasured) {
+        result.degeneracy = RemoveDegenerateDirections(
+            options_.point_sigma * options_.point_sigma,
+            options_.degenerate_fraction * system.correspondences, &system.H, &system.g);
       }
       const Eigen::Vector3d prior_error(x.x() - prior.x(), x.y() - prior.y(),
                                         NormalizeAngle(x.z() - prior.theta()));
@@ -258,15 +273,16 @@ double ScanMatcher::Score(const RollingWindow& map, const MatchingField& field,
 
 MatchResult ScanMatcher::Match(const RollingWindow& map, const MatchingField& field,
                                const ScanPoints& scan, const Pose2& T_odom_base_prior,
-                               const Eigen::Matrix3d& prior_information) const {
+                               const Eigen::Matrix3d& prior_information,
+                               PriorKind prior_kind) const {
   MatchResult best =
-      Refine(map, field, scan, T_odom_base_prior, T_odom_base_prior, prior_information);
+      Refine(map, field, scan, T_odom_base_prior, T_odom_base_prior, prior_information, prior_kind);
   if (!options_.correlative_search || (best.ok && best.score >= options_.good_score)) {
     return best;
   }
   const SearchResult search = CorrelativeSearch(field, scan, T_odom_base_prior, options_);
-  MatchResult other =
-      Refine(map, field, scan, search.T_odom_base, T_odom_base_prior, prior_information);
+  MatchResult other = Refine(map, field, scan, search.T_odom_base, T_odom_base_prior,
+                             prior_information, prior_kind);
   other.iterations += best.iterations;
   other.searched = true;
   best.searched = true;

@@ -20,6 +20,7 @@
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/grid/rolling_window.hpp"
 #include "gridslam/grid/scan_points.hpp"
+#include "gridslam/scan_matching/degeneracy.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
 #include "gridslam/scan_matching/scan_matcher_options.hpp"
 
@@ -34,7 +35,14 @@ struct MatchResult {
   bool converged = false;   ///< The last stage converged before max_iterations.
   bool searched = false;    ///< The correlative search ran.
   bool ok = false;          ///< Enough correspondences; otherwise the pose is the prior.
+  /// The translation directions the scan left to the prior at the last iteration (degeneracy.hpp).
+  DegeneracyResult degeneracy;
 };
+
+/// Where the prior comes from: a measurement of the motion (odometry), which carries the estimate
+/// along the directions the scan leaves degenerate, or a motion model (constant velocity), which
+/// does not: there the scan's few points are better than a guess.
+enum class PriorKind { kMeasured, kMotionModel };
 
 class ScanMatcher {
  public:
@@ -46,12 +54,14 @@ class ScanMatcher {
   /// deviations in the odometry frame (may be zero). Thread-compatible (const, no state).
   [[nodiscard]] MatchResult Match(const RollingWindow& map, const MatchingField& field,
                                   const ScanPoints& scan, const Pose2& T_odom_base_prior,
-                                  const Eigen::Matrix3d& prior_information) const;
+                                  const Eigen::Matrix3d& prior_information,
+                                  PriorKind prior_kind = PriorKind::kMeasured) const;
 
   /// Gauss-Newton refinement alone, from `start`, with the prior centred on `prior`.
   [[nodiscard]] MatchResult Refine(const RollingWindow& map, const MatchingField& field,
                                    const ScanPoints& scan, const Pose2& start, const Pose2& prior,
-                                   const Eigen::Matrix3d& prior_information) const;
+                                   const Eigen::Matrix3d& prior_information,
+                                   PriorKind prior_kind = PriorKind::kMeasured) const;
 
   /// The score (see MatchResult::score) of `scan` at `pose`, and the number of matched points.
   [[nodiscard]] double Score(const RollingWindow& map, const MatchingField& field,

@@ -26,7 +26,14 @@ struct ScanMatcherOptions {
   double convergence_rotation = 1e-4;     ///< ... and [rad].
   int min_points = 20;                    ///< Fewer returns: the frame falls back to odometry.
   int min_correspondences = 15;           ///< Fewer matched points: the match is rejected.
-  double inlier_distance = 0.1;           ///< Points this close to the map count in the score [m].
+  /// A translation direction is degenerate when the points constraining it (the scan's Hessian
+  /// times point_sigma^2, yaw marginalized: an inlier on a wall facing the direction counts about
+  /// one) are fewer than this fraction of the matched points; the odometry prior then carries the
+  /// estimate along it (degeneracy.hpp). A fraction, not a count, so that the test is one of the
+  /// scene's geometry, not of the laser's beam density. A long corridor's axis collects 0.1-2 %;
+  /// chosen on the whole robustness matrix (docs/robustness.md). 0 disables [-].
+  double degenerate_fraction = 0.02;
+  double inlier_distance = 0.1;  ///< Points this close to the map count in the score [m].
   double good_score = 0.5;  ///< A score below this after refining the prior triggers the search.
   bool correlative_search = true;       ///< Enable the coarse search for poor priors.
   double search_linear_window = 0.3;    ///< Half-width of the search in x and y [m].
@@ -52,6 +59,9 @@ struct ScanMatcherOptions {
     v("min_points", min_points, "Scans with fewer returns fall back to odometry");
     v("min_correspondences", min_correspondences,
       "Matches with fewer matched points are rejected (fall back to odometry)");
+    v("degenerate_fraction", degenerate_fraction,
+      "Translation directions constrained by fewer than this fraction of the matched points are "
+      "left to the odometry prior (degenerate, e.g. along a corridor); 0 disables [-]");
     v("inlier_distance", inlier_distance, "Points this close to the map count in the score [m]");
     v("good_score", good_score,
       "Below this score (fraction of points near the map) the correlative search runs");

@@ -135,5 +135,61 @@ TEST(ScanMatcher, PriorHoldsAnUnconstrainedDirection) {
   EXPECT_GT(result.covariance(0, 0), 10.0 * result.covariance(1, 1));
 }
 
+TEST(ScanMatcher, CorridorAxisIsLeftToTheOdometryPrior) {
+  // The front end's prior of one scan step (0.09 m, 0.09 rad) against the weak pull of the gaps
+  // that grazing rays cut into a corridor's walls: with the degeneracy test, the axis (x) is
+  // the prior's alone; without it the scan drags the estimate along the corridor.
+  LocalMapOptions options;
+  options.size = 20.0;
+  RollingWindow window(options, Eigen::Vector2d::Zero(), false);
+  const std::vector<internal::Segment> corridor = {{{-50.0, -0.975}, {50.0, -0.975}},
+                                                   {{-50.0, 1.025}, {50.0, 1.025}}};
+  for (double x = -2.0; x <= 2.0; x += 0.5) {
+    window.InsertScan(Pose2(x, 0.0, 0.0),
+                      ExtractScanPoints(SimulateScan(corridor, Pose2(x, 0.0, 0.0)), Pose2(), 30.0));
+  }
+  MatchingField field(0.3);
+  field.Update(window);
+  const ScanPoints scan =
+      ExtractScanPoints(SimulateScan(corridor, Pose2(0.0, 0.1, 0.05)), Pose2(), 30.0);
+  const double information = 1.0 / (0.09 * 0.09);
+  const Eigen::Matrix3d prior = Eigen::Vector3d::Constant(information).asDiagonal();
+  const Pose2 predicted(0.3, 0.0, 0.0);
+  ScanMatcherOptions matcher_options = MatcherOptions("distance_field");
+  const MatchResult result =
+      ScanMatcher(matcher_options).Match(window, field, scan, predicted, prior);
+  ASSERT_TRUE(result.ok);
+  EXPECT_EQ(result.degeneracy.degenerate_directions, 1);
+  EXPECT_GT(std::abs(result.degeneracy.weakest_direction.x()), 0.99);
+  EXPECT_LT(result.degeneracy.weakest_points,
+            matcher_options.degenerate_fraction * result.correspondences);
+  EXPECT_NEAR(result.T_odom_base.x(), predicted.x(), 1e-3);
+  EXPECT_NEAR(result.T_odom_base.y(), 0.1, 0.03);
+  EXPECT_NEAR(result.T_odom_base.theta(), 0.05, DegToRad(0.5));
+  // The covariance is the prior's along the axis.
+  EXPECT_NEAR(result.covariance(0, 0), 1.0 / information, 0.1 / information);
+
+  // The test off: the scan's few points along the axis claim more than the prior knows.
+  matcher_options.degenerate_fraction = 0.0;
+  const MatchResult free =
+      ScanMatcher(matcher_options).Match(window, field, scan, predicted, prior);
+  ASSERT_TRUE(free.ok);
+  EXPECT_EQ(free.degeneracy.degenerate_directions, 0);
+  EXPECT_LT(free.covariance(0, 0), 0.9 * result.covariance(0, 0));
+}
+
+TEST(ScanMatcher, ARoomHasNoDegenerateDirection) {
+  const ShiftedMap map{Pose2()};
+  const Eigen::Matrix3d prior = Eigen::Vector3d::Constant(100.0).asDiagonal();
+  for (const Pose2& truth : {Pose2(3.0, 1.5, 0.2), Pose2(7.0, 3.0, 2.0)}) {
+    const ScanPoints scan = ExtractScanPoints(SimulateScan(TestWorld(), truth, 361), Pose2(), 30.0);
+    const MatchResult result = ScanMatcher(MatcherOptions("distance_field"))
+                                   .Match(map.window, map.field, scan, truth, prior);
+    ASSERT_TRUE(result.ok);
+    EXPECT_EQ(result.degeneracy.degenerate_directions, 0);
+    EXPECT_GT(result.degeneracy.weakest_points, 10.0);
+  }
+}
+
 }  // namespace
 }  // namespace gridslam::scan_matching
