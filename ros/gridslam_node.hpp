@@ -1,9 +1,10 @@
 // gridslam_node (docs/ros.md "Mapping live"): subscribes to a sensor_msgs/LaserScan topic and the
-// odometry (TF odom -> base_link at each scan's stamp, or a nav_msgs/Odometry topic), looks up the
-// laser mounting (base -> laser) in TF, and feeds the mapping core (mapping_core.hpp). Publishes
-// /map (nav_msgs/OccupancyGrid, latched), /trajectory (nav_msgs/Path, latched) and the TF
-// map -> odom (at each scan's stamp and every ~tf_publish_period); serves ~save_map and ~finish
-// (std_srvs/Trigger). ROS callbacks run on one spinner thread; the mapping runs on the core's.
+// odometry (the TF odom -> base_link samples, or a nav_msgs/Odometry topic; the core interpolates
+// them at each scan's stamp), looks up the laser mounting (base -> laser) in TF, and feeds the
+// mapping core (mapping_core.hpp). Publishes /map (nav_msgs/OccupancyGrid, latched), /trajectory
+// (nav_msgs/Path, latched) and the TF map -> odom (at each scan's stamp and every
+// ~tf_publish_period); serves ~save_map and ~finish (std_srvs/Trigger). ROS callbacks run on one
+// spinner thread, /tf on its own (tf_subscriber.hpp), the mapping on the core's.
 #pragma once
 
 #include <atomic>
