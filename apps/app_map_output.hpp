@@ -18,7 +18,9 @@ struct RobotOutput {
   std::string log;
   std::vector<Pose2> T_base_laser;  ///< Laser mounting of every scan (for laser-frame output).
   long scans = 0;
-  double duration = 0.0;  ///< Log duration [s].
+  double duration = 0.0;         ///< Log duration [s].
+  long skipped_malformed = 0;    ///< Malformed lines or messages skipped (--lenient).
+  long repaired_timestamps = 0;  ///< Timestamps changed by the repair (log.repair_timestamps).
 };
 
 /// Writes every output file into `dir` (which exists). `trajectory_frame`: "base" or "laser".

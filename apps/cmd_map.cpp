@@ -8,8 +8,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <regex>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -17,14 +15,12 @@
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/io/carmen_reader.hpp"
 #include "gridslam/io/map_io.hpp"
-#include "gridslam/io/options_yaml.hpp"
 #include "gridslam/pipeline/frame_interleaver.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 
 #include "app_align_map.hpp"
-#include "app_map_output.hpp"
-#include "app_map_quality.hpp"
+#include "app_map_session.hpp"
 #include "app_output_dir.hpp"
 #include "command.hpp"
 #include <time.h>
@@ -34,39 +30,6 @@ namespace gridslam::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// Version of report.json's layout (docs/guide.md §3): raised when a field changes meaning or is
-/// removed; new fields may appear without a change.
-constexpr int kReportSchemaVersion = 1;
-
-/// Removes the files of an earlier `map` run in `dir` that this run did not write (e.g.
-/// trajectory_2.* of a 3-robot run, map_1.* of a run with two maps); returns how many.
-int RemoveStaleOutputs(const std::string& dir, std::size_t num_robots, std::size_t num_maps) {
-  std::set<std::string> written;
-  for (std::size_t r = 0; r < num_robots; ++r) {
-    const std::string stem = num_robots > 1 ? "trajectory_" + std::to_string(r) : "trajectory";
-    written.insert(stem + ".txt");
-    written.insert(stem + ".tum");
-  }
-  for (std::size_t c = 0; c < num_maps; ++c) {
-    const std::string stem = num_maps == 1 ? "map" : "map_" + std::to_string(c);
-    for (const char* suffix : {".yaml", ".pgm", ".png", "_graph.png"}) {
-      written.insert(stem + suffix);
-    }
-  }
-  static const std::regex kOutput(
-      "trajectory(_[0-9]+)?\\.(txt|tum)|map(_[0-9]+)?(\\.yaml|\\.pgm|\\.png|_graph\\.png)");
-  int removed = 0;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file(ec) && std::regex_match(name, kOutput) && written.count(name) == 0 &&
-        std::filesystem::remove(entry.path(), ec)) {
-      ++removed;
-    }
-  }
-  return removed;
-}
 
 /// One progress line on a terminal: share of the logs read, elapsed time, ETA, scans/s.
 void PrintProgress(double fraction, double elapsed, const pipeline::MapperStats& s) {
@@ -162,42 +125,6 @@ class SnapshotWriter {
   std::vector<double> cpu_seconds_;
 };
 
-nlohmann::json StatsJson(const pipeline::MapperStats& s) {
-  return {
-      {"frames", s.frames},
-      {"key_maps", s.key_maps},
-      {"featureless_key_maps", s.featureless},
-      {"sequential_edges_aligned", s.sequential_aligned},
-      {"closures",
-       {{"proposed", s.candidates + s.appearance_candidates},
-        {"prior_candidates", s.candidates},
-        {"appearance_queries", s.appearance_queries},
-        {"appearance_candidates", s.appearance_candidates},
-        {"verified", s.verified},
-        {"found_by_prior_refinement", s.prior_refined},
-        {"prior_searches", s.prior_searches},
-        {"online_full_optimizations", s.online_full_optimizations},
-        {"accepted", s.accepted},
-        {"rejected_gate", s.rejected_gate},
-        {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},
-        {"pruned", s.pruned}}},
-      {"joins", s.joins},
-      {"odometry",
-       {{"doubtful", s.odometry_doubtful},
-        {"overruled", s.odometry_overruled},
-        {"missing", s.odometry_missing},
-        {"wide_searches", s.wide_searches}}},
-      {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
-      {"chi2_final", s.chi2_final},
-      {"time_s",
-       {{"front_end", s.seconds_front_end},
-        {"description", s.seconds_description},
-        {"alignment", s.seconds_alignment},
-        {"online_optimization", s.seconds_optimization},
-        {"final_optimization", s.seconds_final},
-        {"fusion", s.seconds_fusion}}}};
-}
-
 int RunMap(const MapArgs& args, AppContext& context) {
   const auto start = Clock::now();
   const int num_robots = static_cast<int>(args.logs.size());
@@ -211,13 +138,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
 
   pipeline::Mapper mapper(context.options.Mapper(), num_robots);
-  QualityScans quality_scans(context.options.quality, num_robots);
-  std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
-  std::vector<std::optional<Time>> first_time(static_cast<std::size_t>(num_robots));
+  MapSession session(context.options, args.logs);
   std::vector<pipeline::FrameSource> sources;
-  for (std::size_t r = 0; r < readers.size(); ++r) {
-    robots[r].log = args.logs[r];
-    sources.push_back([&reader = readers[r]] { return reader.Next(); });
+  for (recording::RecordingReader& reader : readers) {
+    sources.push_back([&reader] { return reader.Next(); });
   }
   auto output = OutputDir::Begin(args.output);  // staged, committed at the end (issue 17)
   if (!output.ok()) {
@@ -246,14 +170,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   std::optional<Error> snapshot_error;
   const Status fed = pipeline::InterleaveFrames(std::move(sources), [&](int robot,
                                                                         const Frame& frame) {
-    const auto r = static_cast<std::size_t>(robot);
-    if (!first_time[r]) {
-      first_time[r] = frame.time;
-    }
-    robots[r].duration = ToSeconds(frame.time - *first_time[r]);
-    robots[r].T_base_laser.push_back(frame.T_base_laser);
-    quality_scans.Add(robot, robots[r].scans, frame);
-    ++robots[r].scans;
+    session.Record(robot, frame);
     mapper.AddFrame(robot, frame);
     if (!snapshot_error) {
       if (const Status s = snapshots.AfterFrame(mapper, frame.time); !s.ok()) {
@@ -279,7 +196,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
     std::filesystem::remove_all(partial_dir, ec);
     return ReportError(fed.ok() ? *snapshot_error : fed.error());
   }
+  std::vector<RobotOutput>& robots = session.Robots();
   for (std::size_t r = 0; r < readers.size(); ++r) {
+    robots[r].skipped_malformed = readers[r].Stats().skipped_malformed;
+    robots[r].repaired_timestamps = readers[r].Stats().repaired_timestamps;
     if (robots[r].scans == 0) {  // nothing to map: say so, leave any earlier result alone
       return ReportError(io::NoScansError(args.logs[r], readers[r].Stats()));
     }
@@ -298,55 +218,25 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  nlohmann::json report = StatsJson(result.stats);
-  report["schema_version"] = kReportSchemaVersion;
+  nlohmann::json report = session.Report(result);
   if (args.align_map) {
     report["map_rotation_rad"] = rotations;  // per map: rotation applied to its frame
   }
-  double duration = 0.0;
-  nlohmann::json logs = nlohmann::json::array();
-  for (std::size_t r = 0; r < robots.size(); ++r) {
-    const io::CarmenStats& s = readers[r].Stats();
-    logs.push_back({{"log", robots[r].log},
-                    {"robot", r},
-                    {"scans", robots[r].scans},
-                    {"duration_s", robots[r].duration},
-                    {"skipped_malformed_lines", s.skipped_malformed},
-                    {"repaired_timestamps", s.repaired_timestamps}});
-    duration = std::max(duration, robots[r].duration);
-  }
-  report["logs"] = logs;
   if (args.snapshot_period > 0.0) {
     report["snapshots"] = snapshots.Json();
   }
-  nlohmann::json joins = nlohmann::json::array();
-  for (const pipeline::JoinRecord& j : result.joins) {
-    joins.push_back({{"robots", {j.robot_a, j.robot_b}},
-                     {"time", FormatSeconds(j.time)},
-                     {"vertices", {j.vertex_a, j.vertex_b}},
-                     {"matches", j.matches}});
-  }
-  report["robot_joins"] = joins;
+  const double duration = session.Duration();
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
-  auto quality = RunSelfCheck(output.value()->path(), result, quality_scans,
-                              context.options.quality, context.options.fusion);
-  if (!quality.ok()) {
-    return ReportError(quality.error());
-  }
-  report["quality"] = quality.value().report;
-  const std::string config =
-      "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
-  if (const Status s = WriteMapOutputs(output.value()->path(), result, robots,
-                                       context.options.eval.trajectory_frame, config, report);
-      !s.ok()) {
-    return ReportError(s.error());
+  auto quality_summary = session.Write(output.value()->path(), result, report, "gridslam map");
+  if (!quality_summary.ok()) {
+    return ReportError(quality_summary.error());
   }
   if (const Status s = output.value()->Commit(); !s.ok()) {
     return ReportError(s.error());
   }
-  if (const int removed = RemoveStaleOutputs(args.output, robots.size(), result.maps.size());
+  if (const int removed = RemoveStaleMapOutputs(args.output, robots.size(), result.maps.size());
       removed > 0) {
     std::fprintf(stderr, "gridslam map: removed %d file(s) of an earlier run from %s\n", removed,
                  args.output.c_str());
@@ -371,8 +261,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
                "%ld gated, %ld pruned), %ld joins; %.2f s, %.0fx real time; outputs in %s\n",
                s.frames, s.key_maps, s.accepted, s.verified, s.rejected_gate, s.pruned, s.joins,
                seconds, seconds > 0.0 ? duration / seconds : 0.0, args.output.c_str());
-  if (!quality.value().summary.empty()) {
-    std::fprintf(stderr, "gridslam map: %s\n", quality.value().summary.c_str());
+  if (!quality_summary.value().empty()) {
+    std::fprintf(stderr, "gridslam map: %s\n", quality_summary.value().c_str());
   }
   return kExitOk;
 }

@@ -12,6 +12,7 @@
 
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/io/timestamp_repair.hpp"
+#include "gridslam/recording/odometry_interpolation.hpp"
 
 namespace gridslam::recording {
 namespace {
@@ -125,34 +126,6 @@ Error WithPath(const Error& e, const std::string& path) {
   return out;
 }
 
-// A pose at time t from samples sorted by stamp (interpolated; clamped outside the span).
-struct Sample {
-  std::int64_t stamp_ns;
-  Pose2 pose;
-  std::uint64_t sequence = 0;
-};
-
-Pose2 Interpolate(const std::vector<Sample>& samples, std::int64_t t, bool* clamped) {
-  auto it = std::lower_bound(samples.begin(), samples.end(), t,
-                             [](const Sample& s, std::int64_t v) { return s.stamp_ns < v; });
-  *clamped = false;
-  if (it == samples.begin()) {
-    *clamped = it->stamp_ns != t;
-    return it->pose;
-  }
-  if (it == samples.end()) {
-    *clamped = true;
-    return samples.back().pose;
-  }
-  const Sample& b = *it;
-  const Sample& a = *(it - 1);
-  const double span = static_cast<double>(b.stamp_ns - a.stamp_ns);
-  const double u = span > 0.0 ? static_cast<double>(t - a.stamp_ns) / span : 0.0;
-  const Eigen::Vector2d p = (1.0 - u) * a.pose.translation() + u * b.pose.translation();
-  const double dtheta = NormalizeAngle(b.pose.theta() - a.pose.theta());
-  return {p, a.pose.theta() + u * dtheta};
-}
-
 // Fixed transforms child -> (parent, T_parent_child), the latest value of each pair.
 using Tree = std::map<std::string, std::pair<std::string, Pose2>>;
 
@@ -177,7 +150,7 @@ std::optional<Pose2> Chain(const Tree& tree, const std::string& ancestor,
 
 // Repairs the scan times and the odometry sample stamps in place; returns how many changed.
 long RepairStamps(const std::vector<const ScanMessage*>& scans,
-                  std::vector<std::int64_t>* scan_time, std::vector<Sample>* samples) {
+                  std::vector<std::int64_t>* scan_time, std::vector<OdometrySample>* samples) {
   // (sequence, scan index or -1 - sample index) in storage order.
   std::vector<std::pair<std::uint64_t, long>> stream;
   for (std::size_t i = 0; i < scans.size(); ++i) {
@@ -378,7 +351,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
         "--odom-frame/--base-frame)",
         bag);
   }
-  std::vector<Sample> samples;
+  std::vector<OdometrySample> samples;
   std::string base_frame = StripSlash(options.base_frame);
   if (!odom_topic.empty()) {
     const auto& msgs = bag.odometry.at(odom_topic);
@@ -400,7 +373,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
   for (const TransformMessage& t : bag.tf_static) {
     tree[t.child] = {t.parent, t.T_parent_child};
   }
-  std::map<std::string, std::vector<Sample>> dynamic;  // odom_frame -> child, by child
+  std::map<std::string, std::vector<OdometrySample>> dynamic;  // odom_frame -> child, by child
   for (const TransformMessage& t : bag.tf) {
     if (t.parent == odom_frame) {
       dynamic[t.child].push_back({t.stamp_ns, t.T_parent_child, t.sequence});
@@ -415,7 +388,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
       if (!T_child_base) {
         continue;
       }
-      for (const Sample& s : list) {
+      for (const OdometrySample& s : list) {
         samples.push_back({s.stamp_ns, s.pose * *T_child_base, s.sequence});
       }
       a.odometry_source = "tf " + odom_frame + "->" + child +
@@ -435,8 +408,9 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
   if (repair_timestamps) {
     a.repaired_timestamps = RepairStamps(scans, &scan_time, &samples);
   }
-  std::stable_sort(samples.begin(), samples.end(),
-                   [](const Sample& x, const Sample& y) { return x.stamp_ns < y.stamp_ns; });
+  std::stable_sort(
+      samples.begin(), samples.end(),
+      [](const OdometrySample& x, const OdometrySample& y) { return x.stamp_ns < y.stamp_ns; });
   a.odometry_samples = static_cast<long>(samples.size());
   if (samples.empty()) {
     a.odometry_source = "none";
@@ -475,7 +449,7 @@ Result<std::vector<Frame>> AssembleBagFrames(const BagContents& bag, const BagOp
       f.T_odom_base = Pose2::Identity();
     } else {
       bool clamped = false;
-      f.T_odom_base = Interpolate(samples, scan_time[i], &clamped);
+      f.T_odom_base = InterpolateOdometry(samples, scan_time[i], &clamped);
       a.scans_outside_odometry += clamped ? 1 : 0;
     }
     frames.push_back(std::move(f));

@@ -118,6 +118,21 @@ double YawOfQuaternion(double x, double y, double z, double w) {
   return std::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z));
 }
 
+Result<LaserScan> MakeLaserScan(float angle_min, float angle_increment, float range_min,
+                                float range_max, std::vector<float> ranges) {
+  if (!std::isfinite(angle_min) || !std::isfinite(angle_increment) || !std::isfinite(range_max) ||
+      angle_increment == 0.0F || ranges.empty()) {
+    return InvalidInput("LaserScan message has no beams or a non-finite geometry");
+  }
+  LaserScan scan;
+  scan.ranges = std::move(ranges);
+  scan.angle_min = angle_min;
+  scan.angle_increment = angle_increment;
+  scan.range_min = std::isfinite(range_min) ? std::max(0.0F, range_min) : 0.0F;
+  scan.range_max = range_max;
+  return scan;
+}
+
 Result<ScanMessage> DecodeLaserScan(std::span<const std::uint8_t> data, MessageEncoding encoding) {
   WireReader r(data, encoding);
   ScanMessage m;
@@ -130,23 +145,20 @@ Result<ScanMessage> DecodeLaserScan(std::span<const std::uint8_t> data, MessageE
   const float range_min = r.Get<float>();
   const float range_max = r.Get<float>();
   const std::uint32_t n = r.Count(sizeof(float));
-  m.scan.ranges.resize(n);
+  std::vector<float> ranges(n);
   for (std::uint32_t k = 0; k < n; ++k) {
-    m.scan.ranges[k] = r.Get<float>();
+    ranges[k] = r.Get<float>();
   }
   // intensities follow; not needed.
   if (!r.ok()) {
     return Bad("LaserScan", r);
   }
-  if (!std::isfinite(angle_min) || !std::isfinite(angle_increment) || !std::isfinite(range_max) ||
-      angle_increment == 0.0F || n == 0) {
-    return InvalidInput("LaserScan message has no beams or a non-finite geometry");
+  auto scan = MakeLaserScan(angle_min, angle_increment, range_min, range_max, std::move(ranges));
+  if (!scan.ok()) {
+    return scan.error();
   }
   m.angle_max = angle_max;
-  m.scan.angle_min = angle_min;
-  m.scan.angle_increment = angle_increment;
-  m.scan.range_min = std::isfinite(range_min) ? std::max(0.0F, range_min) : 0.0F;
-  m.scan.range_max = range_max;
+  m.scan = std::move(scan).value();
   return m;
 }
 

@@ -55,6 +55,12 @@ Result<OdometryMessage> DecodeOdometry(std::span<const std::uint8_t> data,
 Result<std::vector<TransformMessage>> DecodeTfMessage(std::span<const std::uint8_t> data,
                                                       MessageEncoding encoding);
 
+/// gridslam's LaserScan from the fields of a sensor_msgs/LaserScan, as every reader builds it (bags
+/// and the ROS node): InvalidInput without beams or with a non-finite geometry; a non-finite or
+/// negative range_min becomes 0. NaN, inf and out-of-range readings stay and are no-returns.
+Result<LaserScan> MakeLaserScan(float angle_min, float angle_increment, float range_min,
+                                float range_max, std::vector<float> ranges);
+
 /// Planar yaw of a unit quaternion (x, y, z, w) [rad].
 double YawOfQuaternion(double x, double y, double z, double w);
 

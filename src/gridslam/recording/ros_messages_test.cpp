@@ -81,6 +81,20 @@ TEST(RosMessages, RejectsABadCdrEncapsulation) {
   EXPECT_NE(m.error().message.find("encapsulation"), std::string::npos);
 }
 
+TEST(RosMessages, MakesLaserScansFromMessageFields) {
+  auto scan = MakeLaserScan(-1.5F, 0.25F, -0.1F, 30.0F, {1.0F, 2.0F});
+  ASSERT_TRUE(scan.ok()) << scan.error().ToString();
+  EXPECT_EQ(scan.value().size(), 2U);
+  EXPECT_DOUBLE_EQ(scan.value().angle_min, -1.5);
+  EXPECT_DOUBLE_EQ(scan.value().Angle(1), -1.25);
+  EXPECT_DOUBLE_EQ(scan.value().range_min, 0.0);  // negative: clamped to 0
+  EXPECT_DOUBLE_EQ(scan.value().range_max, 30.0);
+  EXPECT_FALSE(MakeLaserScan(-1.5F, 0.0F, 0.1F, 30.0F, {1.0F}).ok());  // zero increment
+  EXPECT_FALSE(MakeLaserScan(-1.5F, 0.25F, 0.1F, 30.0F, {}).ok());     // no beams
+  EXPECT_FALSE(
+      MakeLaserScan(std::numeric_limits<float>::quiet_NaN(), 0.25F, 0.1F, 30.0F, {1.0F}).ok());
+}
+
 TEST(RosMessages, KindsOfRos1AndRos2TypeNames) {
   EXPECT_EQ(KindOfType("sensor_msgs/LaserScan"), MessageKind::kLaserScan);
   EXPECT_EQ(KindOfType("sensor_msgs/msg/LaserScan"), MessageKind::kLaserScan);

@@ -1,0 +1,68 @@
+#include "app_map_report.hpp"
+
+#include "gridslam/common/time.hpp"
+
+namespace gridslam::app {
+
+nlohmann::json StatsJson(const pipeline::MapperStats& s) {
+  return {
+      {"frames", s.frames},
+      {"key_maps", s.key_maps},
+      {"featureless_key_maps", s.featureless},
+      {"sequential_edges_aligned", s.sequential_aligned},
+      {"closures",
+       {{"proposed", s.candidates + s.appearance_candidates},
+        {"prior_candidates", s.candidates},
+        {"appearance_queries", s.appearance_queries},
+        {"appearance_candidates", s.appearance_candidates},
+        {"verified", s.verified},
+        {"found_by_prior_refinement", s.prior_refined},
+        {"prior_searches", s.prior_searches},
+        {"online_full_optimizations", s.online_full_optimizations},
+        {"accepted", s.accepted},
+        {"rejected_gate", s.rejected_gate},
+        {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},
+        {"pruned", s.pruned}}},
+      {"joins", s.joins},
+      {"odometry",
+       {{"doubtful", s.odometry_doubtful},
+        {"overruled", s.odometry_overruled},
+        {"missing", s.odometry_missing},
+        {"wide_searches", s.wide_searches}}},
+      {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
+      {"chi2_final", s.chi2_final},
+      {"time_s",
+       {{"front_end", s.seconds_front_end},
+        {"description", s.seconds_description},
+        {"alignment", s.seconds_alignment},
+        {"online_optimization", s.seconds_optimization},
+        {"final_optimization", s.seconds_final},
+        {"fusion", s.seconds_fusion}}}};
+}
+
+nlohmann::json MapReport(const pipeline::MapperResult& result,
+                         const std::vector<RobotOutput>& robots) {
+  nlohmann::json report = StatsJson(result.stats);
+  report["schema_version"] = kReportSchemaVersion;
+  nlohmann::json logs = nlohmann::json::array();
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    logs.push_back({{"log", robots[r].log},
+                    {"robot", r},
+                    {"scans", robots[r].scans},
+                    {"duration_s", robots[r].duration},
+                    {"skipped_malformed_lines", robots[r].skipped_malformed},
+                    {"repaired_timestamps", robots[r].repaired_timestamps}});
+  }
+  report["logs"] = logs;
+  nlohmann::json joins = nlohmann::json::array();
+  for (const pipeline::JoinRecord& j : result.joins) {
+    joins.push_back({{"robots", {j.robot_a, j.robot_b}},
+                     {"time", FormatSeconds(j.time)},
+                     {"vertices", {j.vertex_a, j.vertex_b}},
+                     {"matches", j.matches}});
+  }
+  report["robot_joins"] = joins;
+  return report;
+}
+
+}  // namespace gridslam::app

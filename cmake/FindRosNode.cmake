@@ -1,0 +1,26 @@
+# GRIDSLAM_BUILD_ROS (AUTO, ON, OFF): whether to build the ROS 1 node in ros/. It needs the
+# gridslam program's output code (GRIDSLAM_BUILD_APPS) and Debian's ROS 1 development packages
+# (scripts/setup installs them), found through their pkg-config files. Sets GRIDSLAM_ROS_FOUND and
+# the imported target PkgConfig::GRIDSLAM_ROS.
+set(GRIDSLAM_ROS_FOUND FALSE)
+set(gridslam_ros_modules roscpp tf2_ros sensor_msgs nav_msgs geometry_msgs std_srvs)
+if(GRIDSLAM_BUILD_ROS STREQUAL "OFF")
+  message(STATUS "gridslam_node (ROS 1): off (GRIDSLAM_BUILD_ROS=OFF)")
+elseif(NOT GRIDSLAM_BUILD_APPS)
+  if(GRIDSLAM_BUILD_ROS STREQUAL "ON")
+    message(FATAL_ERROR "GRIDSLAM_BUILD_ROS=ON needs GRIDSLAM_BUILD_APPS=ON")
+  endif()
+  message(STATUS "gridslam_node (ROS 1): off (GRIDSLAM_BUILD_APPS=OFF)")
+else()
+  find_package(PkgConfig REQUIRED)
+  if(GRIDSLAM_BUILD_ROS STREQUAL "ON")
+    pkg_check_modules(GRIDSLAM_ROS REQUIRED IMPORTED_TARGET ${gridslam_ros_modules})
+  else()
+    pkg_check_modules(GRIDSLAM_ROS QUIET IMPORTED_TARGET ${gridslam_ros_modules})
+  endif()
+  if(GRIDSLAM_ROS_FOUND)
+    message(STATUS "gridslam_node (ROS 1): on (roscpp ${GRIDSLAM_ROS_roscpp_VERSION})")
+  else()
+    message(STATUS "gridslam_node (ROS 1): off (ROS 1 packages not found; see scripts/setup)")
+  endif()
+endif()
