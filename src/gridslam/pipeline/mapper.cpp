@@ -1,17 +1,27 @@
 #include "gridslam/pipeline/mapper.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "gridslam/grid/scan_points.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
 
+int ComputeOptions::Threads() const {
+  if (threads > 0) {
+    return threads;
+  }
+  return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 2);
+}
+
 Mapper::Impl::Impl(const MapperOptions& mapper_options, int num_robots)
     : options(mapper_options),
       describer(mapper_options.description),
       graph(num_robots, mapper_options.optimizer.sgd),
-      aligner(graph, mapper_options.matching, mapper_options.loop_closure),
+      aligner(graph, mapper_options.matching, mapper_options.loop_closure,
+              mapper_options.compute.key_map_cache),
       selector(mapper_options.loop_closure),
       arbiter(mapper_options.loop_closure),
       joiner(mapper_options.loop_closure, mapper_options.graph.loop_uncertainty,
@@ -68,10 +78,15 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   node.time = time;
   node.T_odom_key = key_map.T_odom_key;
   auto start = std::chrono::steady_clock::now();
-  node.description = describer.Describe(key_map);
+  description::KeyMapDescription described = describer.Describe(key_map);
   stats.seconds_description += SecondsSince(start);
   ++stats.described;
-  node.alignable = node.description.features.size() >= options.description.min_features;
+  node.features = std::move(described.features);
+  node.cells = std::move(described.cells);
+  node.alignable = node.features.size() >= options.description.min_features;
+  // The distance field and obstacle points are not kept with the node (they follow from its
+  // cells); the aligner's cache holds the recent ones.
+  aligner.Remember(id, {std::move(described.distance), std::move(described.obstacle_points)});
   if (options.loop_closure.refinement.points == "scans") {
     for (const keymap::KeyMapScan& scan : key_map.scans) {
       const ScanPoints points =
@@ -126,7 +141,7 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
     // Spaced along the path: a place seen by dozens of overlapping key maps would otherwise fill
     // the k nearest neighbours of a query with near-duplicates and defeat the index's vote.
     if (state.travel - state.appearance_travel >= options.loop_closure.appearance_spacing) {
-      state.appearance->Add(id, graph.node(id).description.features.descriptors);
+      state.appearance->Add(id, graph.node(id).features.descriptors);
       state.appearance_travel = state.travel;
     }
   }
@@ -156,6 +171,7 @@ void Mapper::Impl::SyncStats() {
   stats.verified = counters.verified;
   stats.prior_refined = counters.prior_refined;
   stats.prior_searches = counters.prior_searches;
+  stats.geometry_recomputed = counters.geometry_recomputed;
   stats.accepted = graph.loop_edges_added();
   stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);
   stats.pruned = graph.NumClosures(ClosureOutcome::kPruned);

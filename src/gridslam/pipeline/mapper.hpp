@@ -60,6 +60,7 @@ struct MapperStats {
   long odometry_overruled = 0;  ///< ... of which the scan match replaced the increment.
   long odometry_missing = 0;    ///< Frames without odometry (scan matching alone).
   long wide_searches = 0;       ///< Wide correlative searches of the front ends.
+  long geometry_recomputed = 0;  ///< Key-map distance fields recomputed for alignments.
   double seconds_front_end = 0.0;
   double seconds_description = 0.0;
   double seconds_alignment = 0.0;
