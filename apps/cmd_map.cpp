@@ -24,11 +24,13 @@
 
 #include "app_align_map.hpp"
 #include "app_map_output.hpp"
+#include "app_memory.hpp"
 #include "app_map_quality.hpp"
 #include "app_output_dir.hpp"
 #include "command.hpp"
 #include <time.h>
 #include <unistd.h>
+
 
 namespace gridslam::app {
 namespace {
@@ -209,7 +211,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
     readers.push_back(std::move(reader).value());
   }
 
-  pipeline::Mapper mapper(context.options.Mapper(), num_robots);
+  // Held by pointer: released once finished, before the outputs (their images are the largest
+  // allocations of a run; the mapper's key maps are no longer needed then).
+  auto mapper_holder = std::make_unique<pipeline::Mapper>(context.options.Mapper(), num_robots);
+  pipeline::Mapper& mapper = *mapper_holder;
   QualityScans quality_scans(context.options.quality, num_robots);
   std::vector<RobotOutput> robots(static_cast<std::size_t>(num_robots));
   std::vector<std::optional<Time>> first_time(static_cast<std::size_t>(num_robots));
@@ -285,6 +290,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
+  mapper_holder.reset();
+  ReleaseFreedMemory();
   nlohmann::json rotations = nlohmann::json::array();
   if (args.align_map) {
     const auto occupied =
@@ -335,6 +342,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
     return ReportError(quality.error());
   }
   report["quality"] = quality.value().report;
+  ReleaseFreedMemory();
   const std::string config =
       "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
   if (const Status s = WriteMapOutputs(output.value()->path(), result, robots,

@@ -26,6 +26,7 @@
 
 #include "gridslam/common/time.hpp"
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/pipeline/mapper_records.hpp"
 #include "gridslam/pose_graph/pose_graph.hpp"
@@ -77,8 +78,9 @@ struct MapperResult {
   std::vector<int> component_of_robot;  ///< Robots with the same value share one map frame.
   std::vector<ClosureRecord> closures;
   std::vector<JoinRecord> joins;
-  /// Fused log-odds grid per map component (index = component value of component_of_robot).
-  std::vector<Grid2D<float>> maps;
+  /// Fused log-odds grid per map component (index = component value of component_of_robot),
+  /// tiled: only the tiles the scans touched hold memory.
+  std::vector<TiledGrid<float>> maps;
   MapperStats stats;
 };
 

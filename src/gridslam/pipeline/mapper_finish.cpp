@@ -5,6 +5,7 @@
 #include <map>
 
 #include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -93,7 +94,8 @@ MapperResult Mapper::Impl::Finish() {
           posed.push_back({graph.Estimate(node.id), &node.key_map});
         }
       }
-      result.maps.push_back(fusion::FuseNearestKeyMap(posed, options.fusion));
+      result.maps.push_back(TiledGrid<float>::FromDense(
+          fusion::FuseNearestKeyMap(posed, options.fusion), kUnknownLogOdds));
     } else {
       std::vector<fusion::PosedScan> posed;
       for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -105,7 +107,7 @@ MapperResult Mapper::Impl::Finish() {
               {result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
         }
       }
-      result.maps.push_back(fusion::FuseScans(posed, options.fusion));
+      result.maps.push_back(fusion::FuseScansTiled(posed, options.fusion));
     }
   }
   stats.seconds_fusion += SecondsSince(start);
