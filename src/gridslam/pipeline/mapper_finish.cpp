@@ -66,9 +66,12 @@ MapperResult Mapper::Impl::Finish() {
     RobotState& state = robots[r];
     std::optional<keymap::KeyMap> last = state.front_end->Finish();
     if (last.has_value()) {
-      ProcessKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
+      SubmitKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
     }
   }
+  Sync();
+  now = front_now;
+  graph.SetTime(now);
   FinalOptimization();
 
   MapperResult result;
@@ -114,7 +117,7 @@ MapperResult Mapper::Impl::Finish() {
   SyncStats();
   result.closures = graph.closures();
   result.joins = joins;
-  result.stats = stats;
+  result.stats = MergedStats();
   return result;
 }
 
