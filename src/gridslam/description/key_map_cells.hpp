@@ -24,22 +24,27 @@ class KeyMapCells {
   KeyMapCells(const Grid2D<float>& log_odds, float occupied_log_odds, float observed_log_odds);
 
   [[nodiscard]] const MapLimits& Limits() const { return limits_; }
-  [[nodiscard]] bool Obstacle(int i, int j) const { return Bit(Index(i, j), 0); }
-  [[nodiscard]] bool Observed(int i, int j) const { return Bit(Index(i, j), 1); }
+  [[nodiscard]] bool Obstacle(int i, int j) const { return Bit(obstacle_, Index(i, j)); }
+  [[nodiscard]] bool Observed(int i, int j) const { return Bit(observed_, Index(i, j)); }
+  /// The bits of the cells in row-major order, 64 per word (bit k % 64 of word k / 64).
+  [[nodiscard]] const std::vector<std::uint64_t>& ObstacleBits() const { return obstacle_; }
+  [[nodiscard]] const std::vector<std::uint64_t>& ObservedBits() const { return observed_; }
   /// Heap bytes held.
-  [[nodiscard]] std::size_t Bytes() const { return bits_.capacity() * sizeof(std::uint64_t); }
+  [[nodiscard]] std::size_t Bytes() const {
+    return (obstacle_.capacity() + observed_.capacity()) * sizeof(std::uint64_t);
+  }
 
  private:
   [[nodiscard]] std::size_t Index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(limits_.Width()) +
            static_cast<std::size_t>(i);
   }
-  [[nodiscard]] bool Bit(std::size_t cell, int which) const {
-    const std::size_t bit = 2 * cell + static_cast<std::size_t>(which);
-    return ((bits_[bit / 64] >> (bit % 64)) & 1U) != 0;
+  [[nodiscard]] static bool Bit(const std::vector<std::uint64_t>& bits, std::size_t k) {
+    return ((bits[k / 64] >> (k % 64)) & 1U) != 0;
   }
   MapLimits limits_;
-  std::vector<std::uint64_t> bits_;  ///< Two bits per cell, row-major: obstacle, observed.
+  std::vector<std::uint64_t> obstacle_;
+  std::vector<std::uint64_t> observed_;
 };
 
 /// What the verification and the refinement of an alignment read of a key map.
@@ -61,7 +66,7 @@ cv::Mat ObstacleImage(const KeyMapCells& cells);
 
 /// The geometry of `cells`. `distance_cells`, if given, is the distance transform of
 /// ObstacleImage(cells) in cells (distance_transform::DistanceTransformCells), else it is
-/// computed here.
+/// computed here (the same numbers).
 KeyMapGeometry ComputeGeometry(const KeyMapCells& cells, const cv::Mat* distance_cells = nullptr);
 
 }  // namespace gridslam::description

@@ -86,12 +86,13 @@ PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& 
       continue;
     }
     last = &s.T_map_base;
-    const ScanPoints points = ExtractScanPoints(*s.scan, s.T_base_laser, options.max_range);
+    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
     PreparedScans::Scan p;
     p.origin = s.T_map_base * points.origin;
     p.points.reserve(points.points.size());
+    const PointTransform to_map(s.T_map_base);
     for (const auto& q : points.points) {
-      p.points.push_back(s.T_map_base * q);
+      p.points.push_back(to_map(q));
     }
     lo = lo.cwiseMin(p.origin);
     hi = hi.cwiseMax(p.origin);
@@ -149,8 +150,19 @@ TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
   TiledGrid<float> grid(
       BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
       kUnknownLogOdds);
-  InsertPrepared(prepared, grid.Limits(), options,
-                 [&](int i, int j) -> float& { return grid.Mutable(i, j); });
+  // Consecutive cells of a ray mostly share a tile: keep the last one at hand.
+  constexpr int kBits = TiledGrid<float>::kTileBits;
+  int tile_i = -1;
+  int tile_j = -1;
+  float* tile = nullptr;
+  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& {
+    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
+      tile_i = i >> kBits;
+      tile_j = j >> kBits;
+      tile = grid.MutableTile(tile_i, tile_j);
+    }
+    return tile[TiledGrid<float>::InTile(i, j)];
+  });
   return grid;
 }
 

@@ -77,15 +77,22 @@ class TiledGrid {
   }
   [[nodiscard]] T Get(const Eigen::Array2i& c) const { return Get(c.x(), c.y()); }
   /// Cell (i, j) for writing; allocates its tile (filled with the fill value) on first use.
-  T& Mutable(int i, int j) {
-    std::unique_ptr<T[]>& tile = tiles_[TileIndex(i >> kTileBits, j >> kTileBits)];
+  T& Mutable(int i, int j) { return MutableTile(i >> kTileBits, j >> kTileBits)[InTile(i, j)]; }
+  T& Mutable(const Eigen::Array2i& c) { return Mutable(c.x(), c.y()); }
+  /// The cells of tile (ti, tj) for writing (allocated, filled with the fill value, on first use).
+  T* MutableTile(int ti, int tj) {
+    std::unique_ptr<T[]>& tile = tiles_[TileIndex(ti, tj)];
     if (tile == nullptr) {
       tile = std::make_unique<T[]>(kTileCells);
       std::fill(tile.get(), tile.get() + kTileCells, fill_);
     }
-    return tile[InTile(i, j)];
+    return tile.get();
   }
-  T& Mutable(const Eigen::Array2i& c) { return Mutable(c.x(), c.y()); }
+  /// Index of cell (i, j) within its tile.
+  [[nodiscard]] static std::size_t InTile(int i, int j) {
+    return (static_cast<std::size_t>(j & (kTileSize - 1)) << kTileBits) |
+           static_cast<std::size_t>(i & (kTileSize - 1));
+  }
 
   /// Tiles along x and y; tile (ti, tj) covers cells [ti * kTileSize, (ti + 1) * kTileSize) x
   /// [tj * kTileSize, ...), clipped to the limits.
@@ -129,11 +136,6 @@ class TiledGrid {
     return static_cast<std::size_t>(tj) * static_cast<std::size_t>(tiles_x_) +
            static_cast<std::size_t>(ti);
   }
-  [[nodiscard]] static std::size_t InTile(int i, int j) {
-    return (static_cast<std::size_t>(j & (kTileSize - 1)) << kTileBits) |
-           static_cast<std::size_t>(i & (kTileSize - 1));
-  }
-
   MapLimits limits_;
   T fill_{};
   int tiles_x_ = 0;

@@ -121,10 +121,11 @@ DescribedKeyMap Mapper::Impl::Describe(const keymap::KeyMap& key_map) const {
   described.description = describer.Describe(key_map);
   if (options.loop_closure.refinement.points == "scans") {
     for (const keymap::KeyMapScan& scan : key_map.scans) {
-      const ScanPoints points =
-          ExtractScanPoints(scan.scan, scan.T_base_laser, options.front_end.local_map.max_range);
+      const ScanReturns points =
+          ExtractScanReturns(scan.scan, scan.T_base_laser, options.front_end.local_map.max_range);
+      const PointTransform to_key(scan.T_key_scan);
       for (const Eigen::Vector2d& p : points.points) {
-        described.scan_points.push_back(scan.T_key_scan * p);
+        described.scan_points.push_back(to_key(p));
       }
     }
   }

@@ -113,9 +113,10 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
     }
     last = &s.T_map_base;
     ++stats.scans;
-    const ScanPoints points = ExtractScanPoints(*s.scan, s.T_base_laser, options.max_range);
+    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+    const PointTransform to_map(s.T_map_base);
     for (const Eigen::Vector2d& q : points.points) {
-      const Eigen::Array2i cell = limits.CellIndex(s.T_map_base * q);
+      const Eigen::Array2i cell = limits.CellIndex(to_map(q));
       if (!limits.Contains(cell)) {
         ++stats.outside;
         continue;
