@@ -32,12 +32,12 @@ double ProjectionSharpness(const std::vector<Eigen::Vector2d>& points, double an
 
 }  // namespace
 
-double DominantWallAngle(const Grid2D<float>& log_odds, float occupied_log_odds) {
+double DominantWallAngle(const TiledGrid<float>& log_odds, float occupied_log_odds) {
   std::vector<Eigen::Vector2d> points;
   const MapLimits& limits = log_odds.Limits();
   for (int j = 0; j < log_odds.Height(); ++j) {
     for (int i = 0; i < log_odds.Width(); ++i) {
-      if (log_odds(i, j) > occupied_log_odds) {
+      if (log_odds.Get(i, j) > occupied_log_odds) {
         points.push_back(limits.CellCenter(Eigen::Array2i(i, j)));
       }
     }
@@ -89,7 +89,7 @@ void RotateMapFrame(pipeline::MapperResult& result, int component, double angle,
       result.graph.SetPose(k, T_new_old * v.T_map_v);
     }
   }
-  Grid2D<float>& old_map = result.maps[static_cast<std::size_t>(component)];
+  TiledGrid<float>& old_map = result.maps[static_cast<std::size_t>(component)];
   const MapLimits& old_limits = old_map.Limits();
   const double res = old_limits.Resolution();
   // Bounding box of the rotated map.
@@ -105,14 +105,54 @@ void RotateMapFrame(pipeline::MapperResult& result, int component, double angle,
   }
   const MapLimits limits(res, lo, static_cast<int>(std::ceil((hi.x() - lo.x()) / res)),
                          static_cast<int>(std::ceil((hi.y() - lo.y()) / res)));
-  Grid2D<float> map(limits, 0.0F);  // log-odds 0: unknown
+  TiledGrid<float> map(limits, 0.0F);  // log-odds 0: unknown
   const Pose2 T_old_new = T_new_old.Inverse();
-  for (int j = 0; j < limits.Height(); ++j) {
-    for (int i = 0; i < limits.Width(); ++i) {
-      const Eigen::Array2i cell =
-          old_limits.CellIndex(T_old_new * limits.CellCenter(Eigen::Array2i(i, j)));
-      if (old_limits.Contains(cell)) {
-        map(i, j) = old_map.at(cell);
+  constexpr int kSize = TiledGrid<float>::kTileSize;
+  // Whether the old map has any written tile under the rotated footprint of a new tile (its
+  // corners' bounding box, one tile of slack): the others read unknown cells only.
+  const auto footprint_written = [&](int i0, int j0, int i1, int j1) {
+    int ti0 = old_map.TilesX();
+    int tj0 = old_map.TilesY();
+    int ti1 = -1;
+    int tj1 = -1;
+    for (const int i : {i0, i1}) {
+      for (const int j : {j0, j1}) {
+        const Eigen::Array2i c =
+            old_limits.CellIndex(T_old_new * limits.CellCenter(Eigen::Array2i(i, j)));
+        ti0 = std::min(ti0, (c.x() >> TiledGrid<float>::kTileBits) - 1);
+        tj0 = std::min(tj0, (c.y() >> TiledGrid<float>::kTileBits) - 1);
+        ti1 = std::max(ti1, (c.x() >> TiledGrid<float>::kTileBits) + 1);
+        tj1 = std::max(tj1, (c.y() >> TiledGrid<float>::kTileBits) + 1);
+      }
+    }
+    for (int tj = std::max(0, tj0); tj <= std::min(old_map.TilesY() - 1, tj1); ++tj) {
+      for (int ti = std::max(0, ti0); ti <= std::min(old_map.TilesX() - 1, ti1); ++ti) {
+        if (old_map.Tile(ti, tj) != nullptr) {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+  for (int tj = 0; tj < map.TilesY(); ++tj) {
+    for (int ti = 0; ti < map.TilesX(); ++ti) {
+      const int i0 = ti * kSize;
+      const int j0 = tj * kSize;
+      const int i1 = std::min(limits.Width(), i0 + kSize);
+      const int j1 = std::min(limits.Height(), j0 + kSize);
+      if (!footprint_written(i0, j0, i1 - 1, j1 - 1)) {
+        continue;
+      }
+      for (int j = j0; j < j1; ++j) {
+        for (int i = i0; i < i1; ++i) {
+          const Eigen::Array2i cell =
+              old_limits.CellIndex(T_old_new * limits.CellCenter(Eigen::Array2i(i, j)));
+          if (old_limits.Contains(cell)) {
+            if (const float v = old_map.Get(cell); v != 0.0F) {
+              map.Mutable(i, j) = v;
+            }
+          }
+        }
       }
     }
   }
@@ -122,13 +162,21 @@ void RotateMapFrame(pipeline::MapperResult& result, int component, double angle,
   int j0 = limits.Height();
   int i1 = -1;
   int j1 = -1;
-  for (int j = 0; j < limits.Height(); ++j) {
-    for (int i = 0; i < limits.Width(); ++i) {
-      if (map(i, j) != 0.0F) {
-        i0 = std::min(i0, i);
-        i1 = std::max(i1, i);
-        j0 = std::min(j0, j);
-        j1 = std::max(j1, j);
+  for (int tj = 0; tj < map.TilesY(); ++tj) {
+    for (int ti = 0; ti < map.TilesX(); ++ti) {
+      const float* tile = map.Tile(ti, tj);
+      if (tile == nullptr) {
+        continue;
+      }
+      for (int k = 0; k < TiledGrid<float>::kTileCells; ++k) {
+        if (tile[k] != 0.0F) {
+          const int i = ti * kSize + (k & (kSize - 1));
+          const int j = tj * kSize + (k >> TiledGrid<float>::kTileBits);
+          i0 = std::min(i0, i);
+          i1 = std::max(i1, i);
+          j0 = std::min(j0, j);
+          j1 = std::max(j1, j);
+        }
       }
     }
   }
@@ -143,10 +191,20 @@ void RotateMapFrame(pipeline::MapperResult& result, int component, double angle,
   j1 = std::min(limits.Height() - 1, j1 + pad);
   const MapLimits cropped(res, limits.Origin() + res * Eigen::Vector2d(i0, j0), i1 - i0 + 1,
                           j1 - j0 + 1);
-  Grid2D<float> out(cropped, 0.0F);
-  for (int j = j0; j <= j1; ++j) {
-    for (int i = i0; i <= i1; ++i) {
-      out(i - i0, j - j0) = map(i, j);
+  TiledGrid<float> out(cropped, 0.0F);
+  for (int tj = 0; tj < map.TilesY(); ++tj) {
+    for (int ti = 0; ti < map.TilesX(); ++ti) {
+      const float* tile = map.Tile(ti, tj);
+      if (tile == nullptr) {
+        continue;
+      }
+      for (int k = 0; k < TiledGrid<float>::kTileCells; ++k) {
+        const int i = ti * kSize + (k & (kSize - 1));
+        const int j = tj * kSize + (k >> TiledGrid<float>::kTileBits);
+        if (tile[k] != 0.0F && i >= i0 && i <= i1 && j >= j0 && j <= j1) {
+          out.Mutable(i - i0, j - j0) = tile[k];
+        }
+      }
     }
   }
   old_map = std::move(out);

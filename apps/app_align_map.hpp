@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 
 namespace gridslam::app {
@@ -14,7 +15,7 @@ namespace gridslam::app {
 /// steps. Unlike edge-gradient histograms, it is not pulled towards 45 degrees by the staircase
 /// of rasterized walls. 0 if the map has (almost) no obstacles. Cells with log-odds above
 /// `occupied_log_odds` are obstacles.
-double DominantWallAngle(const Grid2D<float>& log_odds, float occupied_log_odds);
+double DominantWallAngle(const TiledGrid<float>& log_odds, float occupied_log_odds);
 
 /// Rotates map component `component`'s frame by -angle (about its origin): the trajectories of
 /// its robots, its pose-graph vertices and its fused grid (resampled, nearest cell, onto a grid

@@ -11,6 +11,8 @@
 #include "gridslam/quality/map_self_check.hpp"
 #include "gridslam/quality/quality_image.hpp"
 
+#include "app_memory.hpp"
+
 namespace gridslam::app {
 
 QualityScans::QualityScans(const quality::SelfCheckOptions& options, int num_robots)
@@ -59,13 +61,14 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
         }
       }
     }
-    const quality::SelfCheckResult check =
-        quality::CheckMap(result.maps[c], posed, fusion, options);
+    quality::SelfCheckResult check = quality::CheckMap(result.maps[c], posed, fusion, options);
     total.Merge(check.stats);
     const std::string name =
         result.maps.size() == 1 ? "map_quality.png" : "map_quality_" + std::to_string(c) + ".png";
-    const cv::Mat image = quality::RenderQualityImage(fusion::ToOccupancy(result.maps[c], fusion),
-                                                      quality::DisagreementShare(check, options));
+    const TiledGrid<float> share = quality::DisagreementShare(check, options);
+    check = quality::SelfCheckResult{check.stats, {}, {}};  // the per-cell counts are done
+    ReleaseFreedMemory();
+    const cv::Mat image = quality::RenderQualityImage(result.maps[c], fusion, share);
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (!cv::imwrite(path, image)) {
       return RuntimeError("cannot write " + path);

@@ -8,6 +8,7 @@
 #include "gridslam/io/options_yaml.hpp"
 
 #include "app_map_report.hpp"
+#include "app_memory.hpp"
 
 namespace gridslam::app {
 
@@ -51,6 +52,7 @@ Result<std::string> MapSession::Write(const std::string& dir, const pipeline::Ma
     return quality.error();
   }
   report["quality"] = quality.value().report;
+  ReleaseFreedMemory();
   const std::string config =
       "# " + producer + ": effective configuration\n" + io::OptionsToYaml(options_);
   GRIDSLAM_RETURN_IF_ERROR(

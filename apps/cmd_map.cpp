@@ -21,6 +21,7 @@
 
 #include "app_align_map.hpp"
 #include "app_map_session.hpp"
+#include "app_memory.hpp"
 #include "app_output_dir.hpp"
 #include "command.hpp"
 #include <time.h>
@@ -137,7 +138,10 @@ int RunMap(const MapArgs& args, AppContext& context) {
     readers.push_back(std::move(reader).value());
   }
 
-  pipeline::Mapper mapper(context.options.Mapper(), num_robots);
+  // Held by pointer: released once finished, before the outputs (their images are the largest
+  // allocations of a run; the mapper's key maps are no longer needed then).
+  auto mapper_holder = std::make_unique<pipeline::Mapper>(context.options.Mapper(), num_robots);
+  pipeline::Mapper& mapper = *mapper_holder;
   MapSession session(context.options, args.logs);
   std::vector<pipeline::FrameSource> sources;
   for (recording::RecordingReader& reader : readers) {
@@ -206,6 +210,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   }
   const auto mapped = Clock::now();
   pipeline::MapperResult result = mapper.Finish();
+  mapper_holder.reset();
+  ReleaseFreedMemory();
   nlohmann::json rotations = nlohmann::json::array();
   if (args.align_map) {
     const auto occupied =

@@ -35,23 +35,27 @@ KeyMapDescriber::KeyMapDescriber(const DescriptionOptions& options) : options_(o
   detector_ = detector.value();
 }
 
+KeyMapCells KeyMapDescriber::Cells(const keymap::KeyMap& key_map) const {
+  return {key_map.log_odds, static_cast<float>(ProbabilityToLogOdds(options_.occupied_probability)),
+          static_cast<float>(options_.observed_log_odds)};
+}
+
 KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
-  const Grid2D<float>& log_odds = key_map.log_odds;
-  const int width = log_odds.Width();
-  const int height = log_odds.Height();
-  const auto occupied = static_cast<float>(ProbabilityToLogOdds(options_.occupied_probability));
-  const auto observed = static_cast<float>(options_.observed_log_odds);
+  return Images(Cells(key_map));
+}
+
+KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
+  const MapLimits& limits = cells.Limits();
+  const int width = limits.Width();
+  const int height = limits.Height();
   KeyMapImages images;
-  images.obstacle = cv::Mat(height, width, CV_8U);
+  images.obstacle = ObstacleImage(cells);
   images.grid = cv::Mat(height, width, CV_8U);
   for (int j = 0; j < height; ++j) {
-    auto* obstacle_row = images.obstacle.ptr<std::uint8_t>(j);
+    const auto* obstacle_row = images.obstacle.ptr<std::uint8_t>(j);
     auto* grid_row = images.grid.ptr<std::uint8_t>(j);
-    const float* l = log_odds.data() + static_cast<std::ptrdiff_t>(j) * width;
     for (int i = 0; i < width; ++i) {
-      const bool is_obstacle = l[i] > occupied;
-      obstacle_row[i] = is_obstacle ? 0 : 255;
-      grid_row[i] = is_obstacle ? 0 : (std::abs(l[i]) > observed ? 255 : 128);
+      grid_row[i] = obstacle_row[i] == 0 ? 0 : (cells.Observed(i, j) ? 255 : 128);
     }
   }
   images.distance_cells = distance_transform::DistanceTransformCells(images.obstacle);
@@ -62,7 +66,7 @@ KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
     finite.setTo(0.0F, finite == std::numeric_limits<float>::infinity());
     cv::normalize(finite, images.distance, 0, 255, cv::NORM_MINMAX, CV_8U);
   } else {
-    const double clamp_cells = options_.distance_clamp / log_odds.Limits().Resolution();
+    const double clamp_cells = options_.distance_clamp / limits.Resolution();
     images.distance = distance_transform::DistanceToImage(distance_cells, clamp_cells);
   }
   return images;
@@ -71,27 +75,15 @@ KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
 KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const {
   auto start = std::chrono::steady_clock::now();
   KeyMapDescription description;
-  const Grid2D<float>& log_odds = key_map.log_odds;
-  const MapLimits& limits = log_odds.Limits();
+  description.cells = Cells(key_map);
+  const MapLimits& limits = description.cells.Limits();
   const double resolution = limits.Resolution();
-  const KeyMapImages images = Images(key_map);
+  const KeyMapImages images = Images(description.cells);
 
   // Metric distance field with unobserved cells marked, and the obstacle cell centres.
-  description.distance = Grid2D<float>(limits, matching::kUnknownDistance);
-  const cv::Mat& distance_cells = images.distance_cells;
-  const auto observed = static_cast<float>(options_.observed_log_odds);
-  for (int j = 0; j < limits.Height(); ++j) {
-    const auto* d = distance_cells.ptr<float>(j);
-    const auto* obstacle = images.obstacle.ptr<std::uint8_t>(j);
-    for (int i = 0; i < limits.Width(); ++i) {
-      if (obstacle[i] == 0) {
-        description.obstacle_points.push_back(limits.CellCenter({i, j}));
-      }
-      if (std::abs(log_odds(i, j)) > observed && std::isfinite(d[i])) {
-        description.distance(i, j) = static_cast<float>(d[i] * resolution);
-      }
-    }
-  }
+  KeyMapGeometry geometry = ComputeGeometry(description.cells, &images.distance_cells);
+  description.distance = std::move(geometry.distance);
+  description.obstacle_points = std::move(geometry.obstacle_points);
   description.seconds_distance = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();

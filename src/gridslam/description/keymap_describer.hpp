@@ -18,6 +18,7 @@
 #include <opencv2/features2d.hpp>
 
 #include "gridslam/description/description_options.hpp"
+#include "gridslam/description/key_map_cells.hpp"
 #include "gridslam/grid/grid2d.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/matching/feature_set.hpp"
@@ -32,6 +33,8 @@ struct KeyMapDescription {
   Grid2D<float> distance;
   /// Centres of the obstacle cells [m].
   std::vector<Eigen::Vector2d> obstacle_points;
+  /// The two bits per cell that `distance` and `obstacle_points` follow from (ComputeGeometry).
+  KeyMapCells cells;
   double seconds_distance = 0.0;  ///< Time of the distance transform and images [s].
   double seconds_features = 0.0;  ///< Time of detection and description [s].
 
@@ -57,6 +60,9 @@ class KeyMapDescriber {
   [[nodiscard]] KeyMapDescription Describe(const keymap::KeyMap& key_map) const;
   /// The images Describe() works on.
   [[nodiscard]] KeyMapImages Images(const keymap::KeyMap& key_map) const;
+  [[nodiscard]] KeyMapImages Images(const KeyMapCells& cells) const;
+  /// The obstacle and observed cells of the key map (thresholds of the options).
+  [[nodiscard]] KeyMapCells Cells(const keymap::KeyMap& key_map) const;
   [[nodiscard]] const DescriptionOptions& Options() const { return options_; }
 
  private:

@@ -115,6 +115,37 @@ TEST(SquaredEuclideanDistanceTransform, TruncationKeepsDistancesBelowTheLimitExa
   }
 }
 
+// Without labels the transform takes an integer row pass; with labels, the float envelope of
+// SquaredDistance1D. Both must give the same distances, bit for bit (the mapper's results depend
+// on them), truncated or not, on sparse and dense grids of many shapes.
+TEST(SquaredEuclideanDistanceTransform, IntegerAndFloatEnvelopesGiveTheSameDistances) {
+  std::mt19937 rng(11);
+  long cells = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int w = std::uniform_int_distribution<int>(1, 320)(rng);
+    const int h = std::uniform_int_distribution<int>(1, 320)(rng);
+    const double density = std::pow(10.0, std::uniform_real_distribution<double>(-4.0, -0.3)(rng));
+    std::bernoulli_distribution source(density);
+    std::vector<std::uint8_t> src(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    for (auto& c : src) {
+      c = source(rng) ? 1 : 0;
+    }
+    const float max_distance =
+        trial % 3 == 0 ? kInfinity : std::uniform_real_distribution<float>(0.5F, 60.0F)(rng);
+    SquaredDistanceField fast;
+    SquaredDistanceField labelled;
+    SquaredEuclideanDistanceTransform(src.data(), w, h, fast, false, max_distance);
+    SquaredEuclideanDistanceTransform(src.data(), w, h, labelled, true, max_distance);
+    ASSERT_EQ(fast.squared.size(), labelled.squared.size());
+    for (std::size_t k = 0; k < fast.squared.size(); ++k) {
+      ASSERT_EQ(fast.squared[k], labelled.squared[k])
+          << "trial " << trial << " " << w << "x" << h << " cell " << k;
+    }
+    cells += static_cast<long>(src.size());
+  }
+  EXPECT_GT(cells, 1'000'000);
+}
+
 TEST(DistanceTransformCells, AgreesWithOpenCvPrecise) {
   std::mt19937 rng(11);
   cv::Mat image(64, 80, CV_8U);

@@ -57,18 +57,24 @@ MapLimits BoundingLimits(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, d
 
 }  // namespace
 
-Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options) {
-  const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
-  const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
-  const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
-  // Select the scans to insert and their points in the map frame.
-  struct Prepared {
+namespace {
+
+/// The scans FuseScans inserts, in the map frame, and their bounding box.
+struct PreparedScans {
+  struct Scan {
     Eigen::Vector2d origin;
     std::vector<Eigen::Vector2d> points;
   };
-  std::vector<Prepared> prepared;
+  std::vector<Scan> scans;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max());
   Eigen::Vector2d hi = -lo;
+};
+
+PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& options) {
+  // Select the scans to insert and their points in the map frame.
+  PreparedScans prepared;
+  Eigen::Vector2d& lo = prepared.lo;
+  Eigen::Vector2d& hi = prepared.hi;
   const Pose2* last = nullptr;
   for (const PosedScan& s : scans) {
     if (s.scan == nullptr) {
@@ -80,12 +86,13 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
       continue;
     }
     last = &s.T_map_base;
-    const ScanPoints points = ExtractScanPoints(*s.scan, s.T_base_laser, options.max_range);
-    Prepared p;
+    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+    PreparedScans::Scan p;
     p.origin = s.T_map_base * points.origin;
     p.points.reserve(points.points.size());
+    const PointTransform to_map(s.T_map_base);
     for (const auto& q : points.points) {
-      p.points.push_back(s.T_map_base * q);
+      p.points.push_back(to_map(q));
     }
     lo = lo.cwiseMin(p.origin);
     hi = hi.cwiseMax(p.origin);
@@ -93,26 +100,69 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
-    prepared.push_back(std::move(p));
+    prepared.scans.push_back(std::move(p));
   }
-  if (prepared.empty()) {
-    return Grid2D<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
-                         kUnknownLogOdds);
-  }
-  Grid2D<float> grid(BoundingLimits(lo, hi, options.resolution, options.margin), kUnknownLogOdds);
-  const MapLimits& limits = grid.Limits();
-  for (const Prepared& p : prepared) {
+  return prepared;
+}
+
+/// Inserts the prepared scans, in order; `cell(i, j)` returns the log-odds of a cell to update.
+template <class Cell>
+void InsertPrepared(const PreparedScans& prepared, const MapLimits& limits,
+                    const FusionOptions& options, Cell&& cell) {
+  const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
+  const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
+  const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
+  for (const PreparedScans::Scan& p : prepared.scans) {
     const Eigen::Array2i from = limits.CellIndex(p.origin);
     for (const auto& q : p.points) {
       const Eigen::Array2i to = limits.CellIndex(q);
       TraceLine(from, to, false, [&](int i, int j) {
-        float& v = grid(i, j);
+        float& v = cell(i, j);
         v = std::max(-clamp, v + miss);
       });
-      float& v = grid.at(to);
+      float& v = cell(to.x(), to.y());
       v = std::min(clamp, v + hit);
     }
   }
+}
+
+}  // namespace
+
+Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options) {
+  const PreparedScans prepared = Prepare(scans, options);
+  if (prepared.scans.empty()) {
+    return Grid2D<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
+                         kUnknownLogOdds);
+  }
+  Grid2D<float> grid(BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
+                     kUnknownLogOdds);
+  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& { return grid(i, j); });
+  return grid;
+}
+
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
+                                const FusionOptions& options) {
+  const PreparedScans prepared = Prepare(scans, options);
+  if (prepared.scans.empty()) {
+    return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
+                            kUnknownLogOdds);
+  }
+  TiledGrid<float> grid(
+      BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
+      kUnknownLogOdds);
+  // Consecutive cells of a ray mostly share a tile: keep the last one at hand.
+  constexpr int kBits = TiledGrid<float>::kTileBits;
+  int tile_i = -1;
+  int tile_j = -1;
+  float* tile = nullptr;
+  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& {
+    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
+      tile_i = i >> kBits;
+      tile_j = j >> kBits;
+      tile = grid.MutableTile(tile_i, tile_j);
+    }
+    return tile[TiledGrid<float>::InTile(i, j)];
+  });
   return grid;
 }
 
@@ -163,6 +213,36 @@ Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
     }
   }
   return grid;
+}
+
+OccupancyImage ToOccupancy(const TiledGrid<float>& log_odds, const FusionOptions& options) {
+  const auto occupied = static_cast<float>(ProbabilityToLogOdds(options.occupied_probability));
+  const auto free = static_cast<float>(ProbabilityToLogOdds(options.free_probability));
+  const auto value = [&](float l) {
+    return l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+  };
+  const MapLimits& limits = log_odds.Limits();
+  OccupancyImage image(limits, value(log_odds.Fill()));
+  constexpr int kSize = TiledGrid<float>::kTileSize;
+  for (int tj = 0; tj < log_odds.TilesY(); ++tj) {
+    for (int ti = 0; ti < log_odds.TilesX(); ++ti) {
+      const float* tile = log_odds.Tile(ti, tj);
+      if (tile == nullptr) {
+        continue;
+      }
+      const int i0 = ti * kSize;
+      const int j0 = tj * kSize;
+      const int i1 = std::min(limits.Width(), i0 + kSize);
+      const int j1 = std::min(limits.Height(), j0 + kSize);
+      for (int j = j0; j < j1; ++j) {
+        const float* row = tile + (j - j0) * kSize;
+        for (int i = i0; i < i1; ++i) {
+          image(i, j) = value(row[i - i0]);
+        }
+      }
+    }
+  }
+  return image;
 }
 
 OccupancyImage ToOccupancy(const Grid2D<float>& log_odds, const FusionOptions& options) {

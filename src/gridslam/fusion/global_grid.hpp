@@ -11,6 +11,7 @@
 #include "gridslam/common/options.hpp"
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/scan/laser_scan.hpp"
 
@@ -60,6 +61,10 @@ constexpr long kMaxFusedCells = 250'000'000L;
 /// Re-inserts the scans into a log-odds grid covering them (method "scans"). Throws
 /// std::length_error if the grid would exceed kMaxFusedCells.
 Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options);
+/// FuseScans into a tiled grid (the same limits and cells; tiles no scan touched are not
+/// allocated): what the mapper's final fusion uses.
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
+                                const FusionOptions& options);
 
 /// A key map at its optimized pose (borrowed).
 struct PosedKeyMap {
@@ -74,5 +79,6 @@ Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
 
 /// The occupancy image of a fused log-odds grid (nav_msgs convention).
 OccupancyImage ToOccupancy(const Grid2D<float>& log_odds, const FusionOptions& options);
+OccupancyImage ToOccupancy(const TiledGrid<float>& log_odds, const FusionOptions& options);
 
 }  // namespace gridslam::fusion

@@ -207,6 +207,7 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
   ++num_scans_;
   const MapLimits& limits = Limits();
   const Eigen::Matrix2d R = T_odom_base.Rotation();
+  const PointTransform to_odom(T_odom_base);
   const Eigen::Vector2d origin = T_odom_base * scan.origin;
   const double max_range2 = options_.max_range * options_.max_range;
   const auto memory = static_cast<std::uint16_t>(std::clamp(options_.surface_memory, 1, 60000));
@@ -215,7 +216,7 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
     if ((scan.points[k] - scan.origin).squaredNorm() > max_range2) {
       continue;
     }
-    const Eigen::Vector2d p = T_odom_base * scan.points[k];
+    const Eigen::Vector2d p = to_odom(scan.points[k]);
     const Eigen::Array2i cell = limits.CellIndex(p);
     if (!limits.Contains(cell)) {
       continue;
@@ -248,7 +249,7 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
       const Eigen::Vector2d dir = (pb - scan.origin) / std::sqrt(range2);
       TraceFree(origin, origin + R * dir * options_.max_range, false);
     } else {
-      TraceFree(origin, T_odom_base * pb, true);
+      TraceFree(origin, to_odom(pb), true);
     }
   }
   if (options_.clear_no_returns) {

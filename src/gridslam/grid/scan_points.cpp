@@ -102,6 +102,7 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
     }
   }
   const Eigen::Matrix2d R = T_base_laser.Rotation();
+  const PointTransform to_base(T_base_laser);
   const double max_d2 = neighbour_distance * neighbour_distance;
   out.points.reserve(n);
   out.normals.reserve(n);
@@ -133,9 +134,26 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
     } else if (grazing_normals && k > 0 && k + 1 < n && hit[k - 1] != 0 && hit[k + 1] != 0) {
       GrazingWallNormal(laser_points[k - 1], laser_points[k], laser_points[k + 1], normal, quality);
     }
-    out.points.push_back(T_base_laser * laser_points[k]);
+    out.points.push_back(to_base(laser_points[k]));
     out.normals.push_back(R * normal);
     out.normal_quality.push_back(quality);
+  }
+  return out;
+}
+
+ScanReturns ExtractScanReturns(const LaserScan& scan, const Pose2& T_base_laser, double max_range) {
+  ScanReturns out;
+  out.origin = T_base_laser.translation();
+  const PointTransform to_base(T_base_laser);
+  const std::size_t n = scan.size();
+  out.points.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (scan.IsHit(k) && scan.ranges[k] <= max_range) {
+      const double r = scan.ranges[k];
+      const double a = scan.Angle(k);
+      const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+      out.points.push_back(to_base(r * dir));
+    }
   }
   return out;
 }

@@ -257,6 +257,25 @@ std::uint8_t TrinaryPixel(signed char occupancy) {
 }
 
 Status WriteMapImage(const std::string& path, const OccupancyImage& map) {
+  if (HasExtension(path, ".pgm")) {
+    // Straight into the file's contents, rows flipped (PGM row 0 is the top): one copy of a map
+    // that may hold tens of millions of cells.
+    char header[128];
+    std::snprintf(header, sizeof(header), "P5\n# CREATOR: gridslam %.3f m/pix\n%d %d\n255\n",
+                  map.Limits().Resolution(), map.Width(), map.Height());
+    std::string contents(header);
+    const std::size_t offset = contents.size();
+    const auto w = static_cast<std::size_t>(map.Width());
+    contents.resize(offset + map.size());
+    for (int j = 0; j < map.Height(); ++j) {
+      const signed char* src = &map.Cells()[static_cast<std::size_t>(j) * w];
+      char* dst = contents.data() + offset + static_cast<std::size_t>(map.Height() - 1 - j) * w;
+      for (std::size_t i = 0; i < w; ++i) {
+        dst[i] = static_cast<char>(TrinaryPixel(src[i]));
+      }
+    }
+    return WriteFileAtomically(path, contents);
+  }
   std::vector<std::uint8_t> cells(map.size());
   for (std::size_t k = 0; k < cells.size(); ++k) {
     cells[k] = TrinaryPixel(map.Cells()[k]);

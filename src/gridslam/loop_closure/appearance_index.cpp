@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <utility>
 
 #include <opencv2/core.hpp>
 #include <opencv2/flann.hpp>
@@ -16,8 +17,13 @@ struct AppearanceIndex::Block {
   std::unique_ptr<cv::flann::Index> tree;  ///< Built when a block of float descriptors is full.
 };
 
-AppearanceIndex::AppearanceIndex(int block_size, double ratio)
-    : block_size_(std::max(1, block_size)), ratio_(ratio) {}
+AppearanceIndex::AppearanceIndex(int block_size, double ratio,
+                                 std::shared_ptr<cv::RNG> random_state)
+    : block_size_(std::max(1, block_size)),
+      ratio_(ratio),
+      random_state_(random_state != nullptr ? std::move(random_state) : NewRandomState()) {}
+
+std::shared_ptr<cv::RNG> AppearanceIndex::NewRandomState() { return std::make_shared<cv::RNG>(); }
 
 AppearanceIndex::~AppearanceIndex() = default;
 
@@ -52,8 +58,14 @@ void AppearanceIndex::SealTail() {
   if (type_ != CV_32F) {
     return;  // binary descriptors: brute-force Hamming distances
   }
+  // FLANN draws its trees from this thread's cv::theRNG(): lend it our state.
+  cv::RNG& rng = cv::theRNG();
+  const cv::RNG saved = rng;
+  rng = *random_state_;
   tail.tree = std::make_unique<cv::flann::Index>(tail.descriptors, cv::flann::KDTreeIndexParams(4),
                                                  cvflann::FLANN_DIST_L2);
+  *random_state_ = rng;
+  rng = saved;
 }
 
 std::vector<AppearanceVote> AppearanceIndex::Query(const cv::Mat& descriptors, int max_results,

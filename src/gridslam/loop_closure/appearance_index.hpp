@@ -14,7 +14,7 @@
 #include <memory>
 #include <vector>
 
-#include <opencv2/core/mat.hpp>
+#include <opencv2/core.hpp>
 
 namespace gridslam::loop_closure {
 
@@ -25,9 +25,17 @@ struct AppearanceVote {
 
 class AppearanceIndex {
  public:
+  static constexpr int kDefaultBlockSize = 64;
+  static constexpr double kDefaultRatio = 0.8;
   /// `block_size`: key maps per k-d tree block; `ratio`: a neighbour votes when its distance is
-  /// below `ratio` times that of the k-th (5th) nearest.
-  explicit AppearanceIndex(int block_size = 64, double ratio = 0.8);
+  /// below `ratio` times that of the k-th (5th) nearest. `random_state`: the state FLANN's
+  /// randomized trees are drawn from, continued from block to block (indices given the same one
+  /// share it, in the order their blocks are built); null: the index's own. The trees then do not
+  /// depend on the thread that builds them or on what else used OpenCV's random numbers.
+  explicit AppearanceIndex(int block_size = kDefaultBlockSize, double ratio = kDefaultRatio,
+                           std::shared_ptr<cv::RNG> random_state = nullptr);
+  /// A random state as a fresh thread's cv::theRNG() starts.
+  static std::shared_ptr<cv::RNG> NewRandomState();
   ~AppearanceIndex();
   AppearanceIndex(const AppearanceIndex&) = delete;
   AppearanceIndex& operator=(const AppearanceIndex&) = delete;
@@ -47,6 +55,7 @@ class AppearanceIndex {
   int block_size_;
   double ratio_;
   int type_ = -1;  ///< OpenCV type of the stored descriptors, -1 before the first.
+  std::shared_ptr<cv::RNG> random_state_;
   std::vector<std::unique_ptr<Block>> blocks_;
 };
 

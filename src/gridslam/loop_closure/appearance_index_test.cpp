@@ -1,6 +1,8 @@
 #include "gridslam/loop_closure/appearance_index.hpp"
 
 #include <random>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -84,6 +86,46 @@ TEST(AppearanceIndex, BinaryDescriptorsVoteByHammingDistance) {
     ExpectVotesFor(index, query, target);
   }
   EXPECT_TRUE(index.Query(RandomDescriptors(rng, 5), 3, 1, [](int) { return true; }).empty());
+}
+
+// FLANN's randomized trees come from the index's random state, not from the calling thread's
+// cv::theRNG(): an index built on another thread, or after other code drew random numbers,
+// answers the same (the mapper's results must not depend on its threads).
+TEST(AppearanceIndex, TreesDoNotDependOnTheThreadOrOnOtherRandomNumbers) {
+  std::mt19937 rng(5);
+  std::vector<cv::Mat> stored;
+  for (int node = 0; node < 140; ++node) {  // two sealed blocks of 64 and a tail
+    stored.push_back(RandomDescriptors(rng, 40));
+  }
+  std::vector<cv::Mat> queries;
+  for (int q = 0; q < 10; ++q) {
+    queries.push_back(RandomDescriptors(rng, 30));
+  }
+  const auto answers = [&]() {
+    AppearanceIndex index;
+    for (int node = 0; node < 140; ++node) {
+      index.Add(node, stored[static_cast<std::size_t>(node)]);
+    }
+    std::vector<std::vector<std::pair<int, int>>> all;
+    for (const cv::Mat& query : queries) {
+      all.emplace_back();
+      for (const AppearanceVote& v : index.Query(query, 10, 1, [](int) { return true; })) {
+        all.back().emplace_back(v.node, v.votes);
+      }
+    }
+    return all;
+  };
+  const auto here = answers();
+  for (int k = 0; k < 1000; ++k) {
+    (void)cv::theRNG().next();
+  }
+  EXPECT_EQ(answers(), here);
+  std::vector<std::vector<std::pair<int, int>>> there;
+  std::thread([&] {
+    (void)cv::theRNG().next();
+    there = answers();
+  }).join();
+  EXPECT_EQ(there, here);
 }
 
 }  // namespace

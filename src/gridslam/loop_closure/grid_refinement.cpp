@@ -59,8 +59,9 @@ struct System {
 System Linearize(std::span<const Eigen::Vector2d> points, int stride, const Grid2D<float>& field,
                  const Pose2& T, const RefinementOptions& options) {
   System s;
+  const PointTransform transform(T);
   for (std::size_t k = 0; k < points.size(); k += static_cast<std::size_t>(stride)) {
-    const Eigen::Vector2d q = T * points[k];
+    const Eigen::Vector2d q = transform(points[k]);
     double d = 0.0;
     Eigen::Vector2d grad;
     if (!Interpolate(field, q, &d, &grad) || d > options.max_distance) {

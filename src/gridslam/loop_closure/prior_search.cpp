@@ -51,9 +51,9 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
   std::vector<int> cj(points.size());
   for (int a = 0; a < angles; ++a) {
     const double dtheta = (a - angles / 2) * options.angular_step;
-    const Pose2 T = prior * Pose2(0.0, 0.0, dtheta);
+    const PointTransform T(prior * Pose2(0.0, 0.0, dtheta));
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const Eigen::Vector2d c = limits.ToCellCoordinates(T * points[k]);
+      const Eigen::Vector2d c = limits.ToCellCoordinates(T(points[k]));
       ci[k] = static_cast<int>(std::floor(c.x()));
       cj[k] = static_cast<int>(std::floor(c.y()));
     }

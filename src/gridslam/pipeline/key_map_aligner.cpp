@@ -9,35 +9,97 @@
 
 namespace gridslam::pipeline {
 
-FeatureAligner::FeatureAligner(const KeyMapGraph& graph, const matching::AlignOptions& matching,
-                               const loop_closure::LoopClosureOptions& loop_closure)
-    : graph_(graph), matching_(matching), options_(loop_closure) {}
-
-std::span<const Eigen::Vector2d> FeatureAligner::RefinementPoints(const KeyMapNode& b) const {
-  const auto min_points = static_cast<std::size_t>(options_.refinement.min_points);
-  return b.scan_points.size() >= 2 * min_points
-             ? std::span<const Eigen::Vector2d>(b.scan_points)
-             : std::span<const Eigen::Vector2d>(b.description.obstacle_points);
+GeometryCache::Geometry GeometryCache::Get(int id, const description::KeyMapCells& cells) {
+  if (const auto it = index_.find(id); it != index_.end()) {
+    Touch(it->second);
+    return it->second->second;
+  }
+  ++misses_;
+  Geometry geometry =
+      std::make_shared<const description::KeyMapGeometry>(description::ComputeGeometry(cells));
+  Put(id, geometry);
+  return geometry;
 }
+
+void GeometryCache::Put(int id, Geometry geometry) {
+  if (const auto it = index_.find(id); it != index_.end()) {
+    it->second->second = std::move(geometry);
+    Touch(it->second);
+    return;
+  }
+  entries_.emplace_front(id, std::move(geometry));
+  index_[id] = entries_.begin();
+  while (static_cast<int>(entries_.size()) > capacity_) {
+    index_.erase(entries_.back().first);
+    entries_.pop_back();
+  }
+}
+
+void GeometryCache::Touch(std::list<std::pair<int, Geometry>>::iterator it) {
+  entries_.splice(entries_.begin(), entries_, it);
+}
+
+FeatureAligner::FeatureAligner(const KeyMapGraph& graph, const matching::AlignOptions& matching,
+                               const loop_closure::LoopClosureOptions& loop_closure,
+                               int cache_size)
+    : graph_(graph), matching_(matching), options_(loop_closure), cache_(cache_size) {}
+
+void FeatureAligner::Remember(int id, description::KeyMapGeometry geometry) {
+  cache_.Put(id, std::make_shared<const description::KeyMapGeometry>(std::move(geometry)));
+}
+
+std::span<const Eigen::Vector2d> FeatureAligner::RefinementPoints(
+    const KeyMapNode& b, const description::KeyMapGeometry& geometry_b, int min_points) {
+  return b.scan_points.size() >= 2 * static_cast<std::size_t>(min_points)
+             ? std::span<const Eigen::Vector2d>(b.scan_points)
+             : std::span<const Eigen::Vector2d>(geometry_b.obstacle_points);
+}
+
+namespace {
+
+matching::VerificationInput Verification(const description::KeyMapGeometry& a,
+                                         const description::KeyMapGeometry& b) {
+  matching::VerificationInput input;
+  input.points_b = b.obstacle_points;
+  input.distance_a = &a.distance;
+  input.points_a = a.obstacle_points;
+  input.distance_b = &b.distance;
+  return input;
+}
+
+}  // namespace
 
 std::optional<Alignment> FeatureAligner::Align(int i, int k, const Pose2* prior,
                                                double uncertainty_distance) {
   const KeyMapNode& a = graph_.node(i);
   const KeyMapNode& b = graph_.node(k);
-  const matching::VerificationInput verification =
-      description::KeyMapDescription::Verification(a.description, b.description);
-  const matching::AlignResult result =
-      matching::Align(a.description.features, b.description.features, matching_, &verification);
+  // Matching and RANSAC first; the geometries (distance fields, obstacle points) only when the
+  // verification or the refinement reads them: as matching::Align with a VerificationInput.
+  matching::AlignResult result = matching::Align(a.features, b.features, matching_, nullptr);
+  const bool refine_prior = prior != nullptr && options_.prior_refinement;
+  if (!result.accepted && !refine_prior) {
+    return std::nullopt;
+  }
+  const long cached_misses = cache_.misses();
+  const GeometryCache::Geometry geometry_a = cache_.Get(i, a.cells);
+  const GeometryCache::Geometry geometry_b = cache_.Get(k, b.cells);
+  counters_.geometry_recomputed += cache_.misses() - cached_misses;
+  if (result.accepted && matching_.verification.enabled) {
+    const matching::VerificationResult verified = matching::VerifyAlignment(
+        result.T_a_b, Verification(*geometry_a, *geometry_b), matching_.verification);
+    result.accepted = verified.enough_overlap && verified.accepted;
+  }
   if (!result.accepted) {
-    return prior != nullptr && options_.prior_refinement
-               ? RefineFromPrior(i, k, *prior, verification, uncertainty_distance)
+    return refine_prior
+               ? RefineFromPrior(i, k, *prior, *geometry_a, *geometry_b, uncertainty_distance)
                : std::nullopt;
   }
   ++counters_.verified;
   Pose2 T_a_b = result.T_a_b;
   if (options_.refinement.enabled) {
     const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-        RefinementPoints(b), a.description.distance, T_a_b, options_.refinement);
+        RefinementPoints(b, *geometry_b, options_.refinement.min_points), geometry_a->distance,
+        T_a_b, options_.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
@@ -46,9 +108,8 @@ std::optional<Alignment> FeatureAligner::Align(int i, int k, const Pose2* prior,
 }
 
 std::optional<Alignment> FeatureAligner::RefineFromPrior(
-    int i, int k, const Pose2& T_i_k, const matching::VerificationInput& verification,
-    double uncertainty_distance) {
-  const KeyMapNode& a = graph_.node(i);
+    int i, int k, const Pose2& T_i_k, const description::KeyMapGeometry& geometry_a,
+    const description::KeyMapGeometry& geometry_b, double uncertainty_distance) {
   const KeyMapNode& b = graph_.node(k);
   loop_closure::RefinementOptions refinement = options_.refinement;
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
@@ -60,7 +121,7 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   if (search.enabled && window > search.min_window_xy) {
     ++counters_.prior_searches;
     const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
-        b.description.obstacle_points, a.description.distance, T_i_k, window, search);
+        geometry_b.obstacle_points, geometry_a.distance, T_i_k, window, search);
     GRIDSLAM_LOG_DEBUG("prior search {}-{}: window {:.2f} m, score {:.3f}, rival {:.3f}, {}", i, k,
                        window, found.score, found.rival, found.ok ? "ok" : "refused");
     if (!found.ok) {
@@ -70,7 +131,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     searched = true;
   }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-      RefinementPoints(b), a.description.distance, start, refinement);
+      RefinementPoints(b, geometry_b, options_.refinement.min_points), geometry_a.distance, start,
+      refinement);
   if (!refined.ok || refined.inlier_fraction < options_.prior_min_inliers) {
     GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, ok {}, inliers {:.2f}", i, k, refined.ok,
                        refined.inlier_fraction);
@@ -83,7 +145,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     return std::nullopt;
   }
   const matching::VerificationResult verified =
-      matching::VerifyAlignment(refined.T_a_b, verification, matching_.verification);
+      matching::VerifyAlignment(refined.T_a_b, Verification(geometry_a, geometry_b),
+                                matching_.verification);
   if (!verified.accepted) {
     GRIDSLAM_LOG_DEBUG(
         "prior refinement {}-{}: not verified, overlap {} ({}), agreement {:.2f}, contradiction "

@@ -6,8 +6,13 @@
 // prediction (seeded by a correlative search when the uncertainty allows a large error).
 #pragma once
 
+#include <algorithm>
+#include <list>
+#include <memory>
 #include <optional>
 #include <span>
+#include <unordered_map>
+#include <utility>
 
 #include "gridslam/loop_closure/loop_closure_options.hpp"
 #include "gridslam/matching/align.hpp"
@@ -37,27 +42,57 @@ struct AlignerCounters {
   long verified = 0;        ///< Alignments accepted by matching + verification.
   long prior_refined = 0;   ///< Found by refinement from the prediction.
   long prior_searches = 0;  ///< Correlative searches around the prediction.
+  long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
+};
+
+/// The geometry (distance field, obstacle points) of the key maps used most recently, at most
+/// `capacity` of them; the others are recomputed from their cells when an alignment needs them
+/// (description::ComputeGeometry: the same values). Geometries are shared, so one evicted while
+/// an alignment uses it stays alive until the alignment ends.
+class GeometryCache {
+ public:
+  using Geometry = std::shared_ptr<const description::KeyMapGeometry>;
+  explicit GeometryCache(int capacity) : capacity_(std::max(1, capacity)) {}
+  /// The geometry of key map `id`, recomputed from `cells` if not cached.
+  Geometry Get(int id, const description::KeyMapCells& cells);
+  /// Stores the geometry of key map `id` (just described).
+  void Put(int id, Geometry geometry);
+  [[nodiscard]] long misses() const { return misses_; }
+
+ private:
+  void Touch(std::list<std::pair<int, Geometry>>::iterator it);
+  int capacity_;
+  std::list<std::pair<int, Geometry>> entries_;  ///< Most recently used first.
+  std::unordered_map<int, std::list<std::pair<int, Geometry>>::iterator> index_;
+  long misses_ = 0;
 };
 
 class FeatureAligner : public Aligner {
  public:
   /// `graph` is borrowed (its key maps' descriptions are aligned).
+  /// `cache_size`: key-map geometries kept (GeometryCache).
   FeatureAligner(const KeyMapGraph& graph, const matching::AlignOptions& matching,
-                 const loop_closure::LoopClosureOptions& loop_closure);
+                 const loop_closure::LoopClosureOptions& loop_closure, int cache_size = 64);
   std::optional<Alignment> Align(int i, int k, const Pose2* prior,
                                  double uncertainty_distance) override;
+  /// The geometry of key map `id` as its description computed it (saves recomputing it for the
+  /// alignments of a new key map).
+  void Remember(int id, description::KeyMapGeometry geometry);
   [[nodiscard]] const AlignerCounters& counters() const { return counters_; }
 
  private:
   std::optional<Alignment> RefineFromPrior(int i, int k, const Pose2& T_i_k,
-                                           const matching::VerificationInput& verification,
+                                           const description::KeyMapGeometry& geometry_a,
+                                           const description::KeyMapGeometry& geometry_b,
                                            double uncertainty_distance);
-  [[nodiscard]] std::span<const Eigen::Vector2d> RefinementPoints(const KeyMapNode& b) const;
+  [[nodiscard]] static std::span<const Eigen::Vector2d> RefinementPoints(
+      const KeyMapNode& b, const description::KeyMapGeometry& geometry_b, int min_points);
 
   const KeyMapGraph& graph_;
   matching::AlignOptions matching_;
   loop_closure::LoopClosureOptions options_;
   AlignerCounters counters_;
+  GeometryCache cache_;
 };
 
 }  // namespace gridslam::pipeline

@@ -9,15 +9,17 @@
 // as they happen (DrainEvents).
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "gridslam/description/keymap_describer.hpp"
+#include "gridslam/description/key_map_cells.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/loop_closure/closure_arbiter.hpp"
 #include "gridslam/loop_closure/uncertainty_graph.hpp"
+#include "gridslam/matching/feature_set.hpp"
 #include "gridslam/pipeline/mapper_records.hpp"
 #include "gridslam/pose_graph/optimizer.hpp"
 #include "gridslam/pose_graph/sgd_optimizer.hpp"
@@ -33,7 +35,10 @@ struct KeyMapNode {
   Time time;
   Pose2 T_odom_key;        ///< In the robot's front-end frame.
   keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
-  description::KeyMapDescription description;
+  matching::FeatureSet features;  ///< The description's features.
+  /// The description's obstacle and observed cells: the distance field and the obstacle points
+  /// follow from them (description::ComputeGeometry; FeatureAligner keeps the recent ones).
+  description::KeyMapCells cells;
   /// Returns of the key map's own scans in its frame, for refinement (RefinementOptions::points).
   std::vector<Eigen::Vector2d> scan_points;
   bool alignable = false;  ///< Enough features to be aligned.
@@ -116,7 +121,8 @@ class KeyMapGraph : public loop_closure::GraphView {
   [[nodiscard]] const KeyMapNode& node(int id) const {
     return nodes_[static_cast<std::size_t>(id)];
   }
-  [[nodiscard]] const std::vector<KeyMapNode>& nodes() const { return nodes_; }
+  /// Every vertex by id (a deque: references stay valid as vertices are added).
+  [[nodiscard]] const std::deque<KeyMapNode>& nodes() const { return nodes_; }
   [[nodiscard]] int size() const { return static_cast<int>(nodes_.size()); }
   [[nodiscard]] const std::vector<EdgeRecord>& edges() const { return edges_; }
   [[nodiscard]] const std::vector<ClosureRecord>& closures() const { return closures_; }
@@ -140,7 +146,7 @@ class KeyMapGraph : public loop_closure::GraphView {
   void SetOutcome(int closure, ClosureOutcome outcome);
 
   pose_graph::SgdOptions sgd_options_;
-  std::vector<KeyMapNode> nodes_;
+  std::deque<KeyMapNode> nodes_;
   std::vector<Pose2> estimates_;  ///< T_map_key by vertex id.
   std::vector<EdgeRecord> edges_;
   std::vector<ClosureRecord> closures_;

@@ -1,46 +1,85 @@
 #include "gridslam/pipeline/mapper.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "gridslam/grid/scan_points.hpp"
+#include "gridslam/pipeline/key_map_worker.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
+
+int ComputeOptions::Threads() const {
+  if (threads > 0) {
+    return threads;
+  }
+  return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 2);
+}
 
 Mapper::Impl::Impl(const MapperOptions& mapper_options, int num_robots)
     : options(mapper_options),
       describer(mapper_options.description),
       graph(num_robots, mapper_options.optimizer.sgd),
-      aligner(graph, mapper_options.matching, mapper_options.loop_closure),
+      aligner(graph, mapper_options.matching, mapper_options.loop_closure,
+              mapper_options.compute.key_map_cache),
       selector(mapper_options.loop_closure),
       arbiter(mapper_options.loop_closure),
       joiner(mapper_options.loop_closure, mapper_options.graph.loop_uncertainty,
              mapper_options.optimizer),
-      snapshots(mapper_options.fusion) {
+      snapshots(mapper_options.fusion),
+      appearance_rng(loop_closure::AppearanceIndex::NewRandomState()) {
   GRIDSLAM_CHECK(num_robots >= 1) << num_robots;
   robots.resize(static_cast<std::size_t>(num_robots));
   for (RobotState& robot : robots) {
     robot.front_end = std::make_unique<scan_matching::FrontEnd>(options.front_end);
-    robot.appearance = std::make_unique<loop_closure::AppearanceIndex>();
+    robot.appearance = std::make_unique<loop_closure::AppearanceIndex>(
+        loop_closure::AppearanceIndex::kDefaultBlockSize,
+        loop_closure::AppearanceIndex::kDefaultRatio, appearance_rng);
   }
+  if (options.compute.Threads() >= 2) {
+    // A few key maps may wait: each holds its grid (0.4 MB at the defaults).
+    worker = std::make_unique<KeyMapWorker>([this](KeyMapJob& job) { IntegrateKeyMap(job); }, 4);
+  }
+}
+
+Mapper::Impl::~Impl() = default;
+
+void Mapper::Impl::Sync() {
+  if (worker != nullptr) {
+    worker->Drain();
+  }
+}
+
+MapperStats Mapper::Impl::MergedStats() const {
+  MapperStats merged = stats;
+  merged.frames = front_stats.frames;
+  merged.odometry_doubtful = front_stats.odometry_doubtful;
+  merged.odometry_missing = front_stats.odometry_missing;
+  merged.odometry_overruled = front_stats.odometry_overruled;
+  merged.wide_searches = front_stats.wide_searches;
+  merged.degenerate_one = front_stats.degenerate_one;
+  merged.degenerate_both = front_stats.degenerate_both;
+  merged.seconds_front_end = front_stats.seconds_front_end;
+  return merged;
 }
 
 void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   GRIDSLAM_CHECK(robot >= 0 && robot < static_cast<int>(robots.size())) << robot;
   RobotState& state = robots[static_cast<std::size_t>(robot)];
-  now = frame.time;
-  graph.SetTime(now);
-  ++stats.frames;
+  front_now = frame.time;
+  MapperStats& fs = front_stats;
+  ++fs.frames;
   const auto start = std::chrono::steady_clock::now();
   scan_matching::FrontEndStep step = state.front_end->AddFrame(frame);
-  stats.seconds_front_end += SecondsSince(start);
-  stats.odometry_doubtful += step.odometry == scan_matching::OdometryCheck::kDoubtful ? 1 : 0;
-  stats.odometry_missing += step.odometry == scan_matching::OdometryCheck::kMissing ? 1 : 0;
-  stats.odometry_overruled += step.odometry_overruled ? 1 : 0;
-  stats.wide_searches += step.wide_search ? 1 : 0;
+  fs.seconds_front_end += SecondsSince(start);
+  fs.odometry_doubtful += step.odometry == scan_matching::OdometryCheck::kDoubtful ? 1 : 0;
+  fs.odometry_missing += step.odometry == scan_matching::OdometryCheck::kMissing ? 1 : 0;
+  fs.odometry_overruled += step.odometry_overruled ? 1 : 0;
+  fs.wide_searches += step.wide_search ? 1 : 0;
   if (step.status == scan_matching::FrameStatus::kMatched) {
-    stats.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
-    stats.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
+    fs.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
+    fs.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
   }
   if (state.last_pose.has_value()) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
@@ -53,42 +92,86 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
     state.fusion_scans.push_back({state.scans.size() - 1, frame.T_base_laser, frame.scan});
   }
   if (step.key_map.has_value()) {
-    ProcessKeyMap(robot, std::move(*step.key_map), frame.time);
+    SubmitKeyMap(robot, std::move(*step.key_map), frame.time);
   }
 }
 
-void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
+void Mapper::Impl::SubmitKeyMap(int robot, keymap::KeyMap key_map, Time time) {
   RobotState& state = robots[static_cast<std::size_t>(robot)];
-  const int id = graph.size();
+  KeyMapJob job;
+  job.robot = robot;
+  job.id = key_maps_made++;
   for (std::size_t s = state.unassigned; s < state.scans.size(); ++s) {
-    state.scans[s].node = id;
+    state.scans[s].node = job.id;
   }
   state.unassigned = state.scans.size();
-  ++stats.key_maps;
+  job.time = time;
+  job.event_time = front_now;
+  job.travel = state.travel;
+  job.key_map = std::move(key_map);
+  if (worker == nullptr) {
+    IntegrateKeyMap(job);
+    return;
+  }
+  // The worker integrates; the description goes to whichever thread is free: this one while
+  // the worker still has key maps to integrate, else the worker.
+  if (worker->Busy()) {
+    job.described = Describe(job.key_map);
+  }
+  worker->Push(std::move(job));
+}
 
-  KeyMapNode node;
-  node.robot = robot;
-  node.travel = state.travel;
-  node.time = time;
-  node.T_odom_key = key_map.T_odom_key;
-  auto start = std::chrono::steady_clock::now();
-  node.description = describer.Describe(key_map);
-  stats.seconds_description += SecondsSince(start);
-  ++stats.described;
-  node.alignable = node.description.features.size() >= options.description.min_features;
+DescribedKeyMap Mapper::Impl::Describe(const keymap::KeyMap& key_map) const {
+  const auto start = std::chrono::steady_clock::now();
+  DescribedKeyMap described;
+  described.description = describer.Describe(key_map);
   if (options.loop_closure.refinement.points == "scans") {
     for (const keymap::KeyMapScan& scan : key_map.scans) {
-      const ScanPoints points =
-          ExtractScanPoints(scan.scan, scan.T_base_laser, options.front_end.local_map.max_range);
+      const ScanReturns points =
+          ExtractScanReturns(scan.scan, scan.T_base_laser, options.front_end.local_map.max_range);
+      const PointTransform to_key(scan.T_key_scan);
       for (const Eigen::Vector2d& p : points.points) {
-        node.scan_points.push_back(scan.T_key_scan * p);
+        described.scan_points.push_back(to_key(p));
       }
     }
   }
+  described.seconds = SecondsSince(start);
+  return described;
+}
+
+void Mapper::Impl::IntegrateKeyMap(KeyMapJob& job) {
+  const int robot = job.robot;
+  RobotState& state = robots[static_cast<std::size_t>(robot)];
+  now = job.event_time;
+  graph.SetTime(now);
+  const int id = graph.size();
+  GRIDSLAM_CHECK(id == job.id) << id << " " << job.id;
+  ++stats.key_maps;
+
+  if (!job.described.has_value()) {
+    job.described = Describe(job.key_map);
+  }
+  DescribedKeyMap& described = *job.described;
+  stats.seconds_description += described.seconds;
+  ++stats.described;
+  KeyMapNode node;
+  node.robot = robot;
+  node.travel = job.travel;
+  node.time = job.time;
+  node.T_odom_key = job.key_map.T_odom_key;
+  node.features = std::move(described.description.features);
+  node.cells = std::move(described.description.cells);
+  node.alignable = node.features.size() >= options.description.min_features;
+  // The distance field and obstacle points are not kept with the node (they follow from its
+  // cells); the aligner's cache holds the recent ones.
+  aligner.Remember(id, {std::move(described.description.distance),
+                        std::move(described.description.obstacle_points)});
+  node.scan_points = std::move(described.scan_points);
   stats.featureless += node.alignable ? 0 : 1;
   if (options.fusion.method == "nearest") {
-    node.key_map = std::move(key_map);
+    node.key_map = std::move(job.key_map);
   }
+  auto start = std::chrono::steady_clock::now();
   const int previous = graph.LastKeyMap(robot);
   GRIDSLAM_CHECK(graph.AddKeyMap(std::move(node)) == id);
 
@@ -129,9 +212,9 @@ void Mapper::Impl::ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time) {
     stats.seconds_alignment += SecondsSince(start);
     // Spaced along the path: a place seen by dozens of overlapping key maps would otherwise fill
     // the k nearest neighbours of a query with near-duplicates and defeat the index's vote.
-    if (state.travel - state.appearance_travel >= options.loop_closure.appearance_spacing) {
-      state.appearance->Add(id, graph.node(id).description.features.descriptors);
-      state.appearance_travel = state.travel;
+    if (job.travel - state.appearance_travel >= options.loop_closure.appearance_spacing) {
+      state.appearance->Add(id, graph.node(id).features.descriptors);
+      state.appearance_travel = job.travel;
     }
   }
   if (large_correction && options.graph.optimize_large_corrections) {
@@ -160,6 +243,7 @@ void Mapper::Impl::SyncStats() {
   stats.verified = counters.verified;
   stats.prior_refined = counters.prior_refined;
   stats.prior_searches = counters.prior_searches;
+  stats.geometry_recomputed = counters.geometry_recomputed;
   stats.accepted = graph.loop_edges_added();
   stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);
   stats.pruned = graph.NumClosures(ClosureOutcome::kPruned);
@@ -176,7 +260,8 @@ Pose2 Mapper::Impl::MapToFrontEnd(int robot) const {
 
 MapSnapshot Mapper::Impl::Snapshot() {
   MapSnapshot snapshot;
-  snapshot.time = now;
+  Sync();
+  snapshot.time = front_now;
   for (std::size_t r = 0; r < robots.size(); ++r) {
     snapshot.trajectories.push_back(
         CorrectedTrajectory(static_cast<int>(r), options.graph.interpolate_corrections));
@@ -230,9 +315,14 @@ void Mapper::AddFrame(int robot, const Frame& frame) { impl_->AddFrame(robot, fr
 
 MapperResult Mapper::Finish() { return impl_->Finish(); }
 
-const MapperStats& Mapper::Stats() const { return impl_->stats; }
+const MapperStats& Mapper::Stats() const {
+  impl_->Sync();
+  impl_->reported = impl_->MergedStats();
+  return impl_->reported;
+}
 
 std::optional<Pose2> Mapper::CurrentPose(int robot) const {
+  impl_->Sync();
   const RobotState& state = impl_->robots.at(static_cast<std::size_t>(robot));
   if (!state.last_pose.has_value()) {
     return std::nullopt;
@@ -249,11 +339,15 @@ Pose2 Mapper::MapToOdom(int robot) const {
 }
 
 int Mapper::MapComponent(int robot) const {
+  impl_->Sync();
   return impl_->ComponentNumbers().at(static_cast<std::size_t>(robot));
 }
 
 MapSnapshot Mapper::Snapshot() { return impl_->Snapshot(); }
 
-std::vector<MapperEvent> Mapper::DrainEvents() { return impl_->graph.DrainEvents(); }
+std::vector<MapperEvent> Mapper::DrainEvents() {
+  impl_->Sync();
+  return impl_->graph.DrainEvents();
+}
 
 }  // namespace gridslam::pipeline

@@ -26,6 +26,7 @@
 
 #include "gridslam/common/time.hpp"
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/pipeline/mapper_options.hpp"
 #include "gridslam/pipeline/mapper_records.hpp"
 #include "gridslam/pose_graph/pose_graph.hpp"
@@ -63,6 +64,7 @@ struct MapperStats {
   /// Matched frames whose scan left one / both translation directions to the prior.
   long degenerate_one = 0;
   long degenerate_both = 0;
+  long geometry_recomputed = 0;  ///< Key-map distance fields recomputed for alignments.
   double seconds_front_end = 0.0;
   double seconds_description = 0.0;
   double seconds_alignment = 0.0;
@@ -79,8 +81,9 @@ struct MapperResult {
   std::vector<int> component_of_robot;  ///< Robots with the same value share one map frame.
   std::vector<ClosureRecord> closures;
   std::vector<JoinRecord> joins;
-  /// Fused log-odds grid per map component (index = component value of component_of_robot).
-  std::vector<Grid2D<float>> maps;
+  /// Fused log-odds grid per map component (index = component value of component_of_robot),
+  /// tiled: only the tiles the scans touched hold memory.
+  std::vector<TiledGrid<float>> maps;
   MapperStats stats;
 };
 

@@ -91,7 +91,7 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
              std::find(prior_tried.begin(), prior_tried.end(), id) == prior_tried.end();
     };
     const auto votes =
-        robots[r].appearance->Query(current.description.features.descriptors,
+        robots[r].appearance->Query(current.features.descriptors,
                                     lc.appearance_candidates, /*min_votes=*/5, allowed);
     for (const loop_closure::AppearanceVote& vote : votes) {
       ++stats.appearance_candidates;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "gridslam/fusion/global_grid.hpp"
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -65,9 +66,12 @@ MapperResult Mapper::Impl::Finish() {
     RobotState& state = robots[r];
     std::optional<keymap::KeyMap> last = state.front_end->Finish();
     if (last.has_value()) {
-      ProcessKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
+      SubmitKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
     }
   }
+  Sync();
+  now = front_now;
+  graph.SetTime(now);
   FinalOptimization();
 
   MapperResult result;
@@ -93,7 +97,8 @@ MapperResult Mapper::Impl::Finish() {
           posed.push_back({graph.Estimate(node.id), &node.key_map});
         }
       }
-      result.maps.push_back(fusion::FuseNearestKeyMap(posed, options.fusion));
+      result.maps.push_back(TiledGrid<float>::FromDense(
+          fusion::FuseNearestKeyMap(posed, options.fusion), kUnknownLogOdds));
     } else {
       std::vector<fusion::PosedScan> posed;
       for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -105,14 +110,14 @@ MapperResult Mapper::Impl::Finish() {
               {result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
         }
       }
-      result.maps.push_back(fusion::FuseScans(posed, options.fusion));
+      result.maps.push_back(fusion::FuseScansTiled(posed, options.fusion));
     }
   }
   stats.seconds_fusion += SecondsSince(start);
   SyncStats();
   result.closures = graph.closures();
   result.joins = joins;
-  result.stats = stats;
+  result.stats = MergedStats();
   return result;
 }
 

@@ -1,9 +1,18 @@
 // Internal state of the Mapper (mapper.hpp), shared by its implementation files: mapper.cpp
 // (frames, key maps, sequential edges, the online API), mapper_closures.cpp (the prior-based
 // and the appearance search for loop closures, handing their alignments to the arbiter),
-// mapper_finish.cpp (final optimization, corrected poses, fusion). The decisions live in the
-// parts: KeyMapGraph, FeatureAligner, CandidateSelector, loop_closure::ClosureArbiter,
-// ComponentJoiner. Not part of the API.
+// mapper_finish.cpp (final optimization, corrected poses, fusion), key_map_worker.cpp (the
+// thread that integrates key maps). The decisions live in the parts: KeyMapGraph,
+// FeatureAligner, CandidateSelector, loop_closure::ClosureArbiter, ComponentJoiner. Not part of
+// the API.
+//
+// Threads (compute.threads >= 2): the caller's thread runs the front ends and keeps the scans
+// (the "front" state below); a worker thread integrates the key maps in the order they were made
+// (the "back" state: the graph and everything that reads or writes it). A key map's integration
+// reads nothing the front changes afterwards (its robot's path length and its time travel with
+// it), so integrating it later gives what integrating it at once gives: the results do not
+// depend on the threads. Every call that reads the back state (the online API, Finish) first
+// waits until the worker has integrated every key map made so far (Sync).
 #pragma once
 
 #include <chrono>
@@ -54,6 +63,27 @@ struct RobotState {
   Time last_time;
 };
 
+/// A key map's description and the returns of its scans (pure functions of the key map: either
+/// thread may compute them).
+struct DescribedKeyMap {
+  description::KeyMapDescription description;
+  std::vector<Eigen::Vector2d> scan_points;  ///< For refinement (RefinementOptions::points).
+  double seconds = 0.0;
+};
+
+/// A key map on its way from a front end to the graph.
+struct KeyMapJob {
+  int robot = 0;
+  int id = 0;  ///< Its vertex id: key maps are integrated in the order they are made.
+  keymap::KeyMap key_map;
+  Time time;        ///< The key map's time (KeyMapNode::time).
+  Time event_time;  ///< The latest frame's time when it was made (events, joins).
+  double travel = 0.0;  ///< The robot's path length when it was made.
+  std::optional<DescribedKeyMap> described;  ///< Set by whichever thread describes it.
+};
+
+class KeyMapWorker;
+
 /// What the prior-based search did for a key map.
 struct PriorSearch {
   std::vector<int> tried;  ///< The candidates aligned (left out of the appearance search).
@@ -64,9 +94,21 @@ struct PriorSearch {
 struct Mapper::Impl {
   Impl(const MapperOptions& options, int num_robots);
 
+  ~Impl();
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
   // mapper.cpp
   void AddFrame(int robot, const Frame& frame);
-  void ProcessKeyMap(int robot, keymap::KeyMap key_map, Time time);
+  /// Front: hands a new key map of `robot` to the graph (at once, or to the worker).
+  void SubmitKeyMap(int robot, keymap::KeyMap key_map, Time time);
+  [[nodiscard]] DescribedKeyMap Describe(const keymap::KeyMap& key_map) const;
+  /// Back: the key map becomes a vertex, with its sequential edge and its loop closures.
+  void IntegrateKeyMap(KeyMapJob& job);
+  /// Waits until every key map made so far is integrated (no-op with one thread).
+  void Sync();
+  /// stats with the front's counters (after Sync).
+  [[nodiscard]] MapperStats MergedStats() const;
   void Iterate(int iterations);
   /// Full optimization of the current graph (options.optimizer), then SGD restarts from it.
   void OptimizeNow();
@@ -97,8 +139,18 @@ struct Mapper::Impl {
   ComponentJoiner joiner;
   SnapshotFusion snapshots;
   std::vector<JoinRecord> joins;
-  MapperStats stats;
-  Time now;
+  MapperStats stats;  ///< Back: everything but the front's counters.
+  Time now;           ///< Back: the event time of the key map being integrated.
+  /// FLANN's random state of the appearance indices, shared in the order their blocks are
+  /// built, whichever thread builds them.
+  std::shared_ptr<cv::RNG> appearance_rng;
+
+  // Front (the caller's thread).
+  MapperStats front_stats;  ///< frames, odometry counters, seconds_front_end.
+  Time front_now;           ///< Time of the latest frame.
+  int key_maps_made = 0;
+  MapperStats reported;  ///< What Stats() returns.
+  std::unique_ptr<KeyMapWorker> worker;  ///< Null with one thread.
 };
 
 /// Seconds since `start` (steady clock).

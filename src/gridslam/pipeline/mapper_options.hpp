@@ -87,6 +87,34 @@ struct GraphOptions {
   }
 };
 
+/// How the mapper uses the machine (issue 19). None of these changes the results: a run with any
+/// number of threads and any cache size gives the same output, bit for bit.
+struct ComputeOptions {
+  /// Threads of the mapper, the caller's included: 1 runs everything on the caller's thread; 2
+  /// or more describe and integrate key maps (graph, loop closures, optimization) on a worker
+  /// thread while the caller's thread runs the front end; 0 = the number of cores, at most 2 [-].
+  int threads = 0;
+  /// Key-map distance fields kept in memory for loop-closure alignments (about 0.4 MB each for
+  /// 15 m key maps at 5 cm); the others are recomputed from the key map's cells when needed [-].
+  int key_map_cache = 64;
+
+  template <class V>
+  void Visit(V& v) {
+    v("threads", threads,
+      "Threads of the mapper, the caller's included: 1 = all on one thread, 2 = key maps on a "
+      "worker thread; 0 = the number of cores, at most 2 (same results for any value) [-]");
+    v("key_map_cache", key_map_cache,
+      "Key-map distance fields kept for loop-closure alignments (about 0.4 MB each); others are "
+      "recomputed when needed [-]");
+  }
+  [[nodiscard]] Status Validate() const {
+    GRIDSLAM_RETURN_IF_ERROR(Require(threads >= 0 && threads <= 64, "compute.threads in [0, 64]"));
+    return Require(key_map_cache >= 1, "compute.key_map_cache >= 1");
+  }
+  /// `threads` with 0 resolved.
+  [[nodiscard]] int Threads() const;
+};
+
 /// What the Mapper needs of the configuration: the sections of SlamOptions it uses (documented
 /// there; SlamOptions::Mapper() builds it). Each is validated by SlamOptions::Validate().
 struct MapperOptions {
@@ -97,6 +125,7 @@ struct MapperOptions {
   loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
   GraphOptions graph;                             ///< Building and optimizing the graph.
   fusion::FusionOptions fusion;                   ///< Global map fusion.
+  ComputeOptions compute;                         ///< Threads and memory.
 };
 
 }  // namespace gridslam::pipeline

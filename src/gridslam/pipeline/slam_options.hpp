@@ -31,6 +31,7 @@ struct SlamOptions {
   loop_closure::LoopClosureOptions loop_closure;  ///< Loop-closure search and gates.
   pipeline::GraphOptions graph;                   ///< Building and optimizing the key-map graph.
   fusion::FusionOptions fusion;                   ///< Global map fusion.
+  pipeline::ComputeOptions compute;               ///< Threads and memory of the mapper.
   quality::SelfCheckOptions quality;              ///< Map self-check (docs/self_check.md).
   simulation::SimulationOptions simulation;       ///< `gridslam simulate`.
   benchmark::AlignEvalOptions align_eval;         ///< `gridslam align-eval` (docs/design.md §3.2).
@@ -49,6 +50,7 @@ struct SlamOptions {
     v.Section("loop_closure", loop_closure, "Loop-closure search and gates (docs/design.md §1.6)");
     v.Section("graph", graph, "Key-map graph: edges, online and final optimization");
     v.Section("fusion", fusion, "Global map fusion (docs/design.md §1.8)");
+    v.Section("compute", compute, "Threads and memory of the mapper (docs/speed.md)");
     v.Section("quality", quality, "Map self-check without ground truth (docs/self_check.md)");
     v.Section("simulation", simulation, "The built-in laser simulator (gridslam simulate)");
     v.Section("align_eval", align_eval, "Key-map alignment benchmark (gridslam align-eval)");
@@ -56,7 +58,7 @@ struct SlamOptions {
   }
   /// The sections the mapper uses (pipeline::Mapper takes only these).
   [[nodiscard]] pipeline::MapperOptions Mapper() const {
-    return {front_end, description, matching, optimizer, loop_closure, graph, fusion};
+    return {front_end, description, matching, optimizer, loop_closure, graph, fusion, compute};
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(log.Validate());
@@ -68,6 +70,7 @@ struct SlamOptions {
     GRIDSLAM_RETURN_IF_ERROR(loop_closure.Validate());
     GRIDSLAM_RETURN_IF_ERROR(graph.Validate());
     GRIDSLAM_RETURN_IF_ERROR(fusion.Validate());
+    GRIDSLAM_RETURN_IF_ERROR(compute.Validate());
     GRIDSLAM_RETURN_IF_ERROR(quality.Validate());
     GRIDSLAM_RETURN_IF_ERROR(simulation.Validate());
     GRIDSLAM_RETURN_IF_ERROR(align_eval.Validate());

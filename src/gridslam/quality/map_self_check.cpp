@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/scan_points.hpp"
 
 namespace gridslam::quality {
@@ -36,44 +37,70 @@ void SelfCheckStats::Merge(const SelfCheckStats& other) {
 
 namespace {
 
-// Distance [m] from every cell to the nearest cell where `source(value)` holds; exact up to
-// `max_distance` [m], +inf (or exact) beyond.
-template <class Predicate>
-Grid2D<float> DistanceTo(const OccupancyImage& map, Predicate source, double max_distance) {
-  const MapLimits& limits = map.Limits();
-  std::vector<std::uint8_t> is_source(map.size());
-  for (std::size_t k = 0; k < map.size(); ++k) {
-    is_source[k] = source(map.data()[k]) ? 1 : 0;
+constexpr int kTile = TiledGrid<float>::kTileSize;
+constexpr int kTileBits = TiledGrid<float>::kTileBits;
+constexpr int kBlockTiles = 4;  ///< Distances are computed in blocks of 4 x 4 tiles.
+
+/// A replayed return inside the map: its cell and what the map says there.
+struct Return {
+  int i = 0;
+  int j = 0;
+  float to_occupied = 0.0F;  ///< Distance to the nearest occupied cell [m], +inf beyond the clamp.
+  float to_not_free = 0.0F;  ///< Distance to the nearest cell that is not free [m], idem.
+};
+
+/// Distances [m] from the cells of `block` (a rectangle of cells) to the nearest cell of the map
+/// where `source(occupancy)` holds, exact up to `max_cells`, +inf beyond: the distance transform
+/// of the block grown by that many cells (no source farther away can be nearer), which is what a
+/// transform of the whole map truncated at `max_cells` gives on these cells.
+template <class Source>
+void BlockDistances(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                    Source source, float max_cells, int i0, int j0, int i1, int j1,
+                    std::vector<std::uint8_t>& is_source,
+                    distance_transform::SquaredDistanceField& field, int* region) {
+  const MapLimits& limits = log_odds.Limits();
+  const int halo = static_cast<int>(std::ceil(max_cells)) + 1;
+  const int ri0 = std::max(0, i0 - halo);
+  const int rj0 = std::max(0, j0 - halo);
+  const int ri1 = std::min(limits.Width(), i1 + halo);
+  const int rj1 = std::min(limits.Height(), j1 + halo);
+  const int w = ri1 - ri0;
+  const int h = rj1 - rj0;
+  const auto occupied = static_cast<float>(ProbabilityToLogOdds(fusion.occupied_probability));
+  const auto free = static_cast<float>(ProbabilityToLogOdds(fusion.free_probability));
+  is_source.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int j = rj0; j < rj1; ++j) {
+    std::uint8_t* row = is_source.data() + static_cast<std::size_t>(j - rj0) * w;
+    for (int i = ri0; i < ri1; ++i) {
+      const float l = log_odds.Get(i, j);
+      const signed char v = l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+      row[i - ri0] = source(v) ? 1 : 0;
+    }
   }
-  distance_transform::SquaredDistanceField field;
-  const auto max_cells = static_cast<float>(max_distance / limits.Resolution() + 2.0);
-  distance_transform::SquaredEuclideanDistanceTransform(is_source.data(), limits.Width(),
-                                                        limits.Height(), field, false, max_cells);
-  Grid2D<float> out(limits, distance_transform::kInfinity);
-  const auto resolution = static_cast<float>(limits.Resolution());
-  for (std::size_t k = 0; k < field.squared.size(); ++k) {
-    out.data()[k] = std::sqrt(field.squared[k]) * resolution;
-  }
-  return out;
+  distance_transform::SquaredEuclideanDistanceTransform(is_source.data(), w, h, field, false,
+                                                        max_cells);
+  region[0] = ri0;
+  region[1] = rj0;
+  region[2] = w;
 }
 
 }  // namespace
 
 SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
                          const fusion::FusionOptions& fusion, const SelfCheckOptions& options) {
+  return CheckMap(TiledGrid<float>::FromDense(log_odds, kUnknownLogOdds), scans, fusion, options);
+}
+
+SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
+                         const std::vector<fusion::PosedScan>& scans,
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options) {
   SelfCheckResult result;
-  const OccupancyImage map = fusion::ToOccupancy(log_odds, fusion);
-  const MapLimits& limits = map.Limits();
-  result.returns_per_cell = Grid2D<float>(limits, 0.0F);
-  result.disagreeing_per_cell = Grid2D<float>(limits, 0.0F);
-  const Grid2D<float> to_occupied = DistanceTo(
-      map, [](signed char v) { return v == kOccupiedCell; }, options.distance_clamp);
-  const Grid2D<float> to_not_free = DistanceTo(
-      map, [](signed char v) { return v != kFreeCell; }, options.agreement_distance);
-  // Cell-centre distances are multiples of the resolution: a small slack keeps "within 2 cells"
-  // exact at agreement_distance = 2 * resolution.
-  const double agree = options.agreement_distance + 1e-6;
+  const MapLimits& limits = log_odds.Limits();
+  result.returns_per_cell = TiledGrid<float>(limits, 0.0F);
+  result.disagreeing_per_cell = TiledGrid<float>(limits, 0.0F);
   SelfCheckStats& stats = result.stats;
+  // The returns inside the map, in replay order.
+  std::vector<Return> returns;
   const Pose2* last = nullptr;
   for (const fusion::PosedScan& s : scans) {
     if (s.scan == nullptr) {
@@ -86,25 +113,89 @@ SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion
     }
     last = &s.T_map_base;
     ++stats.scans;
-    const ScanPoints points = ExtractScanPoints(*s.scan, s.T_base_laser, options.max_range);
+    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+    const PointTransform to_map(s.T_map_base);
     for (const Eigen::Vector2d& q : points.points) {
-      const Eigen::Array2i cell = limits.CellIndex(s.T_map_base * q);
+      const Eigen::Array2i cell = limits.CellIndex(to_map(q));
       if (!limits.Contains(cell)) {
         ++stats.outside;
         continue;
       }
-      ++stats.returns;
-      result.returns_per_cell.at(cell) += 1.0F;
-      const double d = to_occupied.at(cell);
-      stats.distance_sum += std::min(d, options.distance_clamp);
-      if (d <= agree) {
-        ++stats.agreeing;
-      } else {
-        result.disagreeing_per_cell.at(cell) += 1.0F;
+      returns.push_back({cell.x(), cell.y()});
+      result.returns_per_cell.Mutable(cell) += 1.0F;
+    }
+  }
+  // Distances to the walls, block by block: the returns grouped by block (counting sort).
+  const int blocks_x = (limits.Width() + kBlockTiles * kTile - 1) / (kBlockTiles * kTile);
+  const int blocks_y = (limits.Height() + kBlockTiles * kTile - 1) / (kBlockTiles * kTile);
+  const auto block_of = [&](const Return& r) {
+    return static_cast<std::size_t>(r.j >> kTileBits) / kBlockTiles *
+               static_cast<std::size_t>(blocks_x) +
+           static_cast<std::size_t>(r.i >> kTileBits) / kBlockTiles;
+  };
+  std::vector<std::size_t> first(static_cast<std::size_t>(blocks_x) * blocks_y + 1, 0);
+  for (const Return& r : returns) {
+    ++first[block_of(r) + 1];
+  }
+  for (std::size_t b = 1; b < first.size(); ++b) {
+    first[b] += first[b - 1];
+  }
+  std::vector<std::size_t> order(returns.size());
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t k = 0; k < returns.size(); ++k) {
+      order[next[block_of(returns[k])]++] = k;
+    }
+  }
+  const auto resolution = static_cast<float>(limits.Resolution());
+  const auto occupied_cells = static_cast<float>(options.distance_clamp / limits.Resolution() + 2.0);
+  const auto not_free_cells =
+      static_cast<float>(options.agreement_distance / limits.Resolution() + 2.0);
+  std::vector<std::uint8_t> is_source;
+  distance_transform::SquaredDistanceField field;
+  for (int by = 0; by < blocks_y; ++by) {
+    for (int bx = 0; bx < blocks_x; ++bx) {
+      const std::size_t b = static_cast<std::size_t>(by) * blocks_x + bx;
+      if (first[b] == first[b + 1]) {
+        continue;
       }
-      if (to_not_free.at(cell) > agree) {
-        ++stats.contradicting;
-      }
+      const int i0 = bx * kBlockTiles * kTile;
+      const int j0 = by * kBlockTiles * kTile;
+      const int i1 = std::min(limits.Width(), i0 + kBlockTiles * kTile);
+      const int j1 = std::min(limits.Height(), j0 + kBlockTiles * kTile);
+      int region[3];
+      const auto lookup = [&](float Return::*member) {
+        for (std::size_t k = first[b]; k < first[b + 1]; ++k) {
+          Return& r = returns[order[k]];
+          const float sq = field.squared[static_cast<std::size_t>(r.j - region[1]) * region[2] +
+                                         static_cast<std::size_t>(r.i - region[0])];
+          r.*member = std::sqrt(sq) * resolution;
+        }
+      };
+      BlockDistances(
+          log_odds, fusion, [](signed char v) { return v == kOccupiedCell; }, occupied_cells, i0,
+          j0, i1, j1, is_source, field, region);
+      lookup(&Return::to_occupied);
+      BlockDistances(
+          log_odds, fusion, [](signed char v) { return v != kFreeCell; }, not_free_cells, i0, j0,
+          i1, j1, is_source, field, region);
+      lookup(&Return::to_not_free);
+    }
+  }
+  // Cell-centre distances are multiples of the resolution: a small slack keeps "within 2 cells"
+  // exact at agreement_distance = 2 * resolution.
+  const double agree = options.agreement_distance + 1e-6;
+  for (const Return& r : returns) {
+    ++stats.returns;
+    const double d = r.to_occupied;
+    stats.distance_sum += std::min(d, options.distance_clamp);
+    if (d <= agree) {
+      ++stats.agreeing;
+    } else {
+      result.disagreeing_per_cell.Mutable(r.i, r.j) += 1.0F;
+    }
+    if (r.to_not_free > agree) {
+      ++stats.contradicting;
     }
   }
   return result;

@@ -13,6 +13,7 @@
 
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/quality/self_check_options.hpp"
 
 namespace gridslam::quality {
@@ -40,13 +41,17 @@ struct SelfCheckStats {
 
 struct SelfCheckResult {
   SelfCheckStats stats;
-  Grid2D<float> returns_per_cell;      ///< Replayed returns per cell of the map.
-  Grid2D<float> disagreeing_per_cell;  ///< Of which: not agreeing.
+  TiledGrid<float> returns_per_cell;      ///< Replayed returns per cell of the map.
+  TiledGrid<float> disagreeing_per_cell;  ///< Of which: not agreeing.
 };
 
 /// Replays `scans` (in trajectory order; borrowed) against the fused log-odds map `log_odds`,
 /// thresholded as `fusion` does for map.pgm. Scans closer than min_motion / min_rotation to the
-/// previous replayed scan are skipped.
+/// previous replayed scan are skipped. Memory: the tiles of the map the returns fall in, not the
+/// map's bounding box (distances to the walls are computed block by block around the returns).
+SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
+                         const std::vector<fusion::PosedScan>& scans,
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
 SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
                          const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
 

@@ -131,7 +131,7 @@ TEST(MapSelfCheck, SpacingSkipsScansOnTheCorrectedTrajectory) {
 TEST(MapSelfCheck, HeatLayerMarksTheDisagreeingArea) {
   const SelfCheckResult bad = Check(MakeRun(0.0, 0.5));
   const SelfCheckOptions options;
-  const Grid2D<float> share = DisagreementShare(bad, options);
+  const TiledGrid<float> share = DisagreementShare(bad, options);
   // The far (left) wall is drawn twice 0.5 m apart after the shift; the right wall near the pivot
   // less so. Compare the share near the left wall with the share near the bottom-right corner.
   const MapLimits& l = share.Limits();
@@ -139,14 +139,15 @@ TEST(MapSelfCheck, HeatLayerMarksTheDisagreeingArea) {
   for (double y = -2.5; y <= 2.5; y += 0.05) {
     for (double x = -6.2; x <= -5.3; x += 0.05) {
       const Eigen::Array2i c = l.CellIndex({x, y});
-      if (l.Contains(c)) left = std::max(left, share.at(c));
+      if (l.Contains(c)) left = std::max(left, share.Get(c));
     }
   }
   EXPECT_GT(left, 0.4);
   const SelfCheckResult good = Check(MakeRun(0.0, 0.0));
-  const Grid2D<float> good_share = DisagreementShare(good, options);
+  const TiledGrid<float> good_share = DisagreementShare(good, options);
   float good_max = 0.0F;
-  for (const float v : good_share.Cells()) good_max = std::max(good_max, v);
+  const Grid2D<float> good_dense = good_share.ToDense();
+  for (const float v : good_dense.Cells()) good_max = std::max(good_max, v);
   EXPECT_LT(good_max, left);
   const SimRun run = MakeRun(0.0, 0.0);
   const fusion::FusionOptions fusion;

@@ -1,61 +1,163 @@
 #include "gridslam/quality/quality_image.hpp"
 
 #include <algorithm>
+#include <vector>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "gridslam/grid/log_odds.hpp"
 
 namespace gridslam::quality {
 
-Grid2D<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
-                                float min_returns) {
-  const MapLimits& limits = result.returns_per_cell.Limits();
-  Grid2D<float> share(limits, -1.0F);
+namespace {
+
+constexpr int kTile = TiledGrid<float>::kTileSize;
+
+/// The cells [i0, i0 + n) of row j of `grid`, reflected at the grid's edges (BORDER_REFLECT_101).
+void ReflectedRow(const TiledGrid<float>& grid, int i0, int n, int j, float* out) {
+  const int width = grid.Width();
+  const int jj = cv::borderInterpolate(j, grid.Height(), cv::BORDER_REFLECT_101);
+  for (int m = 0; m < n; ++m) {
+    out[m] = grid.Get(cv::borderInterpolate(i0 + m, width, cv::BORDER_REFLECT_101), jj);
+  }
+}
+
+}  // namespace
+
+TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
+                                   float min_returns) {
+  const TiledGrid<float>& returns = result.returns_per_cell;
+  const TiledGrid<float>& disagreeing = result.disagreeing_per_cell;
+  const MapLimits& limits = returns.Limits();
+  TiledGrid<float> share(limits, -1.0F);
   if (limits.NumCells() == 0) {
     return share;
   }
-  // Grid2D is row-major with Width() columns: wrap without copying.
-  cv::Mat returns(limits.Height(), limits.Width(), CV_32F,
-                  const_cast<float*>(result.returns_per_cell.data()));
-  cv::Mat disagreeing(limits.Height(), limits.Width(), CV_32F,
-                      const_cast<float*>(result.disagreeing_per_cell.data()));
-  cv::Mat smooth_returns;
-  cv::Mat smooth_disagreeing;
   const double sigma = options.heat_radius / limits.Resolution();
-  if (sigma > 0.0) {
-    cv::GaussianBlur(returns, smooth_returns, cv::Size(0, 0), sigma);
-    cv::GaussianBlur(disagreeing, smooth_disagreeing, cv::Size(0, 0), sigma);
-  } else {
-    smooth_returns = returns;
-    smooth_disagreeing = disagreeing;
+  // cv::GaussianBlur's kernel for float images; no smoothing without a radius.
+  const int ksize = sigma > 0.0 ? (cvRound(sigma * 4 * 2 + 1) | 1) : 1;
+  std::vector<float> kernel(static_cast<std::size_t>(ksize), 1.0F);
+  if (ksize > 1) {
+    const cv::Mat k = cv::getGaussianKernel(ksize, sigma, CV_32F);
+    for (int m = 0; m < ksize; ++m) {
+      kernel[static_cast<std::size_t>(m)] = k.at<float>(m);
+    }
   }
-  for (int j = 0; j < limits.Height(); ++j) {
-    const auto* r = smooth_returns.ptr<float>(j);
-    const auto* d = smooth_disagreeing.ptr<float>(j);
-    for (int i = 0; i < limits.Width(); ++i) {
-      if (r[i] >= min_returns) {
-        share(i, j) = std::clamp(d[i] / r[i], 0.0F, 1.0F);
+  const int r = ksize / 2;
+  // Tiles within the kernel's reach of a tile with returns.
+  const int reach = (r + kTile - 1) / kTile;
+  std::vector<bool> needed(static_cast<std::size_t>(returns.TilesX()) * returns.TilesY(), false);
+  for (int tj = 0; tj < returns.TilesY(); ++tj) {
+    for (int ti = 0; ti < returns.TilesX(); ++ti) {
+      if (returns.Tile(ti, tj) == nullptr) {
+        continue;
+      }
+      for (int nj = std::max(0, tj - reach); nj <= std::min(returns.TilesY() - 1, tj + reach);
+           ++nj) {
+        for (int ni = std::max(0, ti - reach); ni <= std::min(returns.TilesX() - 1, ti + reach);
+             ++ni) {
+          needed[static_cast<std::size_t>(nj) * returns.TilesX() + ni] = true;
+        }
+      }
+    }
+  }
+  // Separable filter, rows then columns, each output cell summed over the kernel in order: the
+  // value of a cell does not depend on the tiles around it.
+  const int span = kTile + 2 * r;
+  std::vector<float> row_r(static_cast<std::size_t>(span));
+  std::vector<float> row_d(static_cast<std::size_t>(span));
+  std::vector<float> h_r(static_cast<std::size_t>(span) * kTile);
+  std::vector<float> h_d(static_cast<std::size_t>(span) * kTile);
+  std::vector<float> v_r(static_cast<std::size_t>(kTile));
+  std::vector<float> v_d(static_cast<std::size_t>(kTile));
+  for (int tj = 0; tj < returns.TilesY(); ++tj) {
+    for (int ti = 0; ti < returns.TilesX(); ++ti) {
+      if (!needed[static_cast<std::size_t>(tj) * returns.TilesX() + ti]) {
+        continue;
+      }
+      const int i0 = ti * kTile;
+      const int j0 = tj * kTile;
+      const int w = std::min(limits.Width(), i0 + kTile) - i0;
+      const int h = std::min(limits.Height(), j0 + kTile) - j0;
+      for (int y = 0; y < h + 2 * r; ++y) {
+        ReflectedRow(returns, i0 - r, w + 2 * r, j0 - r + y, row_r.data());
+        ReflectedRow(disagreeing, i0 - r, w + 2 * r, j0 - r + y, row_d.data());
+        float* out_r = h_r.data() + static_cast<std::size_t>(y) * kTile;
+        float* out_d = h_d.data() + static_cast<std::size_t>(y) * kTile;
+        std::fill(out_r, out_r + w, 0.0F);
+        std::fill(out_d, out_d + w, 0.0F);
+        for (int m = 0; m < ksize; ++m) {
+          const float c = kernel[static_cast<std::size_t>(m)];
+          for (int x = 0; x < w; ++x) {
+            out_r[x] += c * row_r[static_cast<std::size_t>(x + m)];
+            out_d[x] += c * row_d[static_cast<std::size_t>(x + m)];
+          }
+        }
+      }
+      for (int y = 0; y < h; ++y) {
+        std::fill(v_r.begin(), v_r.end(), 0.0F);
+        std::fill(v_d.begin(), v_d.end(), 0.0F);
+        for (int m = 0; m < ksize; ++m) {
+          const float c = kernel[static_cast<std::size_t>(m)];
+          const float* in_r = h_r.data() + static_cast<std::size_t>(y + m) * kTile;
+          const float* in_d = h_d.data() + static_cast<std::size_t>(y + m) * kTile;
+          for (int x = 0; x < w; ++x) {
+            v_r[static_cast<std::size_t>(x)] += c * in_r[x];
+            v_d[static_cast<std::size_t>(x)] += c * in_d[x];
+          }
+        }
+        for (int x = 0; x < w; ++x) {
+          const float rr = v_r[static_cast<std::size_t>(x)];
+          if (rr >= min_returns) {
+            share.Mutable(i0 + x, j0 + y) =
+                std::clamp(v_d[static_cast<std::size_t>(x)] / rr, 0.0F, 1.0F);
+          }
+        }
       }
     }
   }
   return share;
 }
 
-cv::Mat RenderQualityImage(const OccupancyImage& map, const Grid2D<float>& share) {
-  const MapLimits& limits = map.Limits();
+namespace {
+
+template <class Occupancy>
+cv::Mat Render(const MapLimits& limits, Occupancy occupancy, const TiledGrid<float>& share) {
   cv::Mat image(limits.Height(), limits.Width(), CV_8UC3);
   for (int j = 0; j < limits.Height(); ++j) {
+    auto* row = image.ptr<cv::Vec3b>(limits.Height() - 1 - j);
     for (int i = 0; i < limits.Width(); ++i) {
-      const signed char v = map(i, j);
+      const signed char v = occupancy(i, j);
       const double g = v == kOccupiedCell ? 0.0 : (v == kFreeCell ? 255.0 : 205.0);
-      const float s = share.Limits().Contains({i, j}) ? share(i, j) : -1.0F;
+      const float s = share.Limits().Contains({i, j}) ? share.Get(i, j) : -1.0F;
       const double a = s > 0.0F ? std::min(1.0, 2.0 * s) : 0.0;
       // Blend towards pure red (BGR 0, 0, 255); walls stay dark enough to read.
       const auto blue = static_cast<std::uint8_t>((1.0 - a) * g);
       const auto red = static_cast<std::uint8_t>((1.0 - a) * g + a * 255.0);
-      image.at<cv::Vec3b>(limits.Height() - 1 - j, i) = cv::Vec3b(blue, blue, red);
+      row[i] = cv::Vec3b(blue, blue, red);
     }
   }
   return image;
+}
+
+}  // namespace
+
+cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share) {
+  return Render(map.Limits(), [&](int i, int j) { return map(i, j); }, share);
+}
+
+cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                           const TiledGrid<float>& share) {
+  const auto occupied = static_cast<float>(ProbabilityToLogOdds(fusion.occupied_probability));
+  const auto free = static_cast<float>(ProbabilityToLogOdds(fusion.free_probability));
+  return Render(
+      log_odds.Limits(),
+      [&](int i, int j) {
+        const float l = log_odds.Get(i, j);
+        return l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+      },
+      share);
 }
 
 }  // namespace gridslam::quality

@@ -6,17 +6,24 @@
 #include <opencv2/core/mat.hpp>
 
 #include "gridslam/grid/grid2d.hpp"
+#include "gridslam/grid/tiled_grid.hpp"
 #include "gridslam/quality/map_self_check.hpp"
 
 namespace gridslam::quality {
 
-/// Local share of disagreeing returns, smoothed over options.heat_radius; -1 where fewer than
-/// `min_returns` (smoothed) returns per cell fell. Same limits as the map.
-Grid2D<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
-                                float min_returns = 0.02F);
+/// Local share of disagreeing returns, smoothed over options.heat_radius (a Gaussian of that
+/// standard deviation, the kernel of cv::GaussianBlur, reflected at the map's edges); -1 where
+/// fewer than `min_returns` (smoothed) returns per cell fell. Same limits as the map; only the
+/// tiles near returns are computed and stored.
+TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
+                                   float min_returns = 0.02F);
 
 /// BGR image (row 0 at the top, as map.png): grey occupancy, red where the share is high
 /// (full red at a share of 0.5 or more).
-cv::Mat RenderQualityImage(const OccupancyImage& map, const Grid2D<float>& share);
+cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share);
+/// The same from the fused log-odds map, thresholded as fusion::ToOccupancy does (without
+/// holding the occupancy image).
+cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                           const TiledGrid<float>& share);
 
 }  // namespace gridslam::quality
