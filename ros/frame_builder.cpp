@@ -24,7 +24,11 @@ FrameBuilder::FrameBuilder(io::CarmenOptions log, OdometrySource source)
     : log_(std::move(log)), source_(source) {}
 
 void FrameBuilder::AddOdometry(const OdometryInput& odometry) {
-  const recording::OdometrySample sample{odometry.stamp_ns, PlanarOf(odometry.T_odom_base), 0};
+  Pose2 T_odom_base = PlanarOf(odometry.T_odom_child);
+  if (odometry.T_child_base) {
+    T_odom_base = T_odom_base * PlanarOf(*odometry.T_child_base);
+  }
+  const recording::OdometrySample sample{odometry.stamp_ns, T_odom_base, 0};
   const auto at = std::upper_bound(
       samples_.begin(), samples_.end(), sample.stamp_ns,
       [](std::int64_t t, const recording::OdometrySample& s) { return t < s.stamp_ns; });
@@ -32,7 +36,7 @@ void FrameBuilder::AddOdometry(const OdometryInput& odometry) {
 }
 
 bool FrameBuilder::Covers(std::int64_t stamp_ns) const {
-  return source_ != OdometrySource::kTopic ||
+  return source_ == OdometrySource::kNone ||
          (!samples_.empty() && samples_.back().stamp_ns >= stamp_ns);
 }
 
@@ -52,23 +56,12 @@ Result<Frame> FrameBuilder::Build(const ScanInput& scan, bool* clamped) {
                            ? Pose2(log_.laser_offset[0], log_.laser_offset[1], log_.laser_offset[2])
                            : PlanarOf(scan.T_base_laser);
   frame.source_line = ++built_;
-  switch (source_) {
-    case OdometrySource::kTf:
-      if (!scan.T_odom_base) {
-        return InvalidInput("scan without TF odometry");
-      }
-      frame.T_odom_base = PlanarOf(*scan.T_odom_base);
-      *clamped = scan.odometry_clamped;
-      break;
-    case OdometrySource::kTopic:
-      if (samples_.empty()) {  // not a frame without odometry: odometry is on its way
-        return InvalidInput("scan before the first odometry message");
-      }
-      frame.T_odom_base = recording::InterpolateOdometry(samples_, scan.stamp_ns, clamped);
-      break;
-    case OdometrySource::kNone:
-      frame.has_odometry = false;
-      break;
+  if (source_ == OdometrySource::kNone) {
+    frame.has_odometry = false;
+  } else if (samples_.empty()) {  // not a frame without odometry: the odometry is on its way
+    return InvalidInput("scan before the first odometry sample");
+  } else {
+    frame.T_odom_base = recording::InterpolateOdometry(samples_, scan.stamp_ns, clamped);
   }
   // Keep one sample before the oldest stamp a later scan can have (scans come in order).
   const auto old = std::lower_bound(

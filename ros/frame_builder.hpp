@@ -1,9 +1,11 @@
 // Frames for the mapper from the scans and odometry a ROS graph delivers (C++20 side of the node):
 // the same Frame as the bag reader builds from a recording (recording/bag_reader.hpp): the
 // LaserScan through recording::MakeLaserScan, range_max capped at log.max_usable_range, the
-// mounting from TF unless log.laser_offset overrides it, and topic odometry interpolated at the
-// scan's stamp (recording::InterpolateOdometry). Stamps are used as they arrive: no timestamp
-// repair (log.repair_timestamps needs a recording's storage order, which a live stream lacks).
+// mounting from TF unless log.laser_offset overrides it, and the odometry samples (TF or topic)
+// interpolated at the scan's stamp (recording::InterpolateOdometry; an odometry ending in an
+// intermediate frame completed by its fixed transform, as the bag reader does). Stamps are used as
+// they arrive: no timestamp repair (log.repair_timestamps needs a recording's storage order, which
+// a live stream lacks).
 #pragma once
 
 #include <cstdint>
@@ -26,15 +28,15 @@ class FrameBuilder {
  public:
   FrameBuilder(io::CarmenOptions log, OdometrySource source);
 
-  /// A topic odometry sample. Samples older than the newest are inserted in stamp order.
+  /// An odometry sample. Samples older than the newest are inserted in stamp order.
   void AddOdometry(const OdometryInput& odometry);
-  /// Whether a scan at `stamp_ns` can be built without waiting: topic odometry has a sample at
-  /// or after it (always true for TF odometry and without odometry).
+  /// Whether a scan at `stamp_ns` can be built without waiting: the odometry has a sample at or
+  /// after it (always true without odometry).
   [[nodiscard]] bool Covers(std::int64_t stamp_ns) const;
 
-  /// The frame of a scan; InvalidInput for an unusable scan (no beams, non-finite geometry, TF
-  /// odometry missing, no topic odometry sample yet). `clamped`: the topic odometry was taken
-  /// from the nearest sample because none lies on the other side of the stamp.
+  /// The frame of a scan; InvalidInput for an unusable scan (no beams, non-finite geometry, no
+  /// odometry sample yet). `clamped`: the odometry was taken from the nearest sample because none
+  /// lies on the other side of the stamp.
   Result<Frame> Build(const ScanInput& scan, bool* clamped);
 
   /// Samples kept for interpolation (old ones are dropped as scans move on).

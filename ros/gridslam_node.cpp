@@ -14,14 +14,6 @@ namespace {
 // while the mapping lags behind ROS time (a burst of loop closures during fast playback).
 constexpr std::int64_t kTfLagWindowNs = 5'000'000'000;
 
-// How much TF the node keeps: a scan whose stamp is older than the newest odometry by more than
-// this is skipped at once (the data it needs is gone). Long, so that scans queued behind a slow
-// callback (the first scan's mounting wait, a service) at 20x playback still find their odometry.
-constexpr double kTfCacheSeconds = 120.0;
-
-// A scan newer than the newest odometry takes it when at most this much newer (end of a recording).
-constexpr double kMaxOdometryClamp = 0.5;  // [s]
-
 // Raises `newest` to `stamp`; returns the previous value.
 std::int64_t RaiseTo(std::atomic<std::int64_t>& newest, std::int64_t stamp) {
   std::int64_t previous = newest.load();
@@ -33,7 +25,15 @@ std::int64_t RaiseTo(std::atomic<std::int64_t>& newest, std::int64_t stamp) {
 }  // namespace
 
 GridslamNode::GridslamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
-    : nh_(nh), private_nh_(private_nh), tf_buffer_(ros::Duration(kTfCacheSeconds)) {}
+    : nh_(nh), private_nh_(private_nh) {}
+
+GridslamNode::~GridslamNode() {
+  tf_subscriber_.reset();
+  scan_sub_.shutdown();
+  odom_sub_.shutdown();
+  tf_timer_.stop();
+  core_.reset();
+}
 
 bool GridslamNode::Start() {
   std::string error;
@@ -59,7 +59,12 @@ bool GridslamNode::Start() {
     ROS_FATAL("gridslam_node: configuration: %s", error.c_str());
     return false;
   }
-  tf_subscriber_ = std::make_unique<TfSubscriber>(&tf_buffer_, params_.map_frame, ChildFrame());
+  TfSubscriber::Callback on_dynamic;
+  if (params_.core.odometry == OdometrySource::kTf) {
+    on_dynamic = [this](const geometry_msgs::TransformStamped& t) { OnTfOdometry(t); };
+  }
+  tf_subscriber_ = std::make_unique<TfSubscriber>(&tf_buffer_, params_.map_frame, ChildFrame(),
+                                                  std::move(on_dynamic));
   scan_sub_ = nh_.subscribe(params_.scan_topic, static_cast<std::uint32_t>(params_.scan_queue_size),
                             &GridslamNode::OnScan, this);
   const char* odometry = "TF";
@@ -107,32 +112,32 @@ std::optional<Transform3D> GridslamNode::WaitForTransform(const std::string& tar
   }
 }
 
-void GridslamNode::LookUpOdometry(const ros::Time& stamp, ScanInput* scan) {
-  // The newest odometry: a scan older than the cache is skipped without waiting.
-  std::optional<geometry_msgs::TransformStamped> newest;
-  try {
-    newest = tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
-  } catch (const tf2::TransformException& /*e*/) {
-    // none yet: wait below
-  }
-  if (newest && (newest->header.stamp - stamp).toSec() > kTfCacheSeconds - 1.0) {
+void GridslamNode::OnTfOdometry(const geometry_msgs::TransformStamped& t) {
+  if (t.header.frame_id != params_.odom_frame) {
     return;
   }
-  scan->T_odom_base =
-      WaitForTransform(params_.odom_frame, params_.base_frame, stamp, params_.tf_timeout);
-  if (scan->T_odom_base) {
-    return;
-  }
-  try {
-    newest = tf_buffer_.lookupTransform(params_.odom_frame, params_.base_frame, ros::Time(0));
-    const double ahead = (stamp - newest->header.stamp).toSec();
-    if (ahead > 0.0 && ahead <= kMaxOdometryClamp) {
-      scan->T_odom_base = ToTransform3D(newest->transform);
-      scan->odometry_clamped = true;
+  const std::string& child = t.child_frame_id;
+  OdometryInput sample{ToNanoseconds(t.header.stamp), ToTransform3D(t.transform), std::nullopt};
+  if (child != params_.base_frame) {
+    auto chain = odometry_chains_.find(child);
+    if (chain == odometry_chains_.end()) {
+      std::optional<Transform3D> T_child_base;
+      try {  // fixed transforms only: /tf_static has arrived by the time odometry flows
+        T_child_base = ToTransform3D(
+            tf_buffer_.lookupTransform(child, params_.base_frame, ros::Time(0)).transform);
+        ROS_INFO("gridslam_node: TF odometry %s -> %s, completed to %s by fixed transforms",
+                 params_.odom_frame.c_str(), child.c_str(), params_.base_frame.c_str());
+      } catch (const tf2::TransformException& /*e*/) {
+        // not a frame on the way to the base
+      }
+      chain = odometry_chains_.emplace(child, T_child_base).first;
     }
-  } catch (const tf2::TransformException& /*e*/) {
-    // no odometry at all: the caller says so
+    if (!chain->second) {
+      return;
+    }
+    sample.T_child_base = chain->second;
   }
+  core_->AddOdometry(sample);
 }
 
 Transform3D GridslamNode::Mounting(const std::string& laser_frame) {
@@ -172,24 +177,12 @@ void GridslamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   CountLostScans(msg->header.seq);
   ScanInput scan = ToScanInput(*msg);
   scan.T_base_laser = Mounting(StripSlash(msg->header.frame_id));
-  if (params_.core.odometry == OdometrySource::kTf) {
-    LookUpOdometry(msg->header.stamp, &scan);
-    if (!scan.T_odom_base) {
-      core_->SkipScan();
-      ROS_WARN_THROTTLE(5.0,
-                        "gridslam_node: no TF %s -> %s at the scan's stamp %.6f within %.2f s: "
-                        "scan skipped (%ld so far)",
-                        params_.odom_frame.c_str(), params_.base_frame.c_str(),
-                        msg->header.stamp.toSec(), params_.tf_timeout,
-                        core_->Progress().scans_skipped);
-      return;
-    }
-  }
   core_->AddScan(std::move(scan));
 }
 
 void GridslamNode::OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
-  core_->AddOdometry({ToNanoseconds(msg->header.stamp), ToTransform3D(msg->pose.pose)});
+  core_->AddOdometry(
+      {ToNanoseconds(msg->header.stamp), ToTransform3D(msg->pose.pose), std::nullopt});
 }
 
 void GridslamNode::OnTfTimer(const ros::WallTimerEvent& /*event*/) {
@@ -213,10 +206,10 @@ void GridslamNode::PublishPose(std::int64_t stamp_ns, const PlanarPose& T_map_od
   const CoreProgress s = core_->Progress();
   if (s.scans_mapped % 1000 == 0) {
     ROS_INFO(
-        "gridslam_node: %ld scans mapped (%ld queued, %ld dropped, %ld without TF), "
-        "%ld key maps, %ld loop closures",
-        s.scans_mapped, s.scans_queued, s.scans_dropped, s.scans_skipped, s.key_maps,
-        s.loop_closures);
+        "gridslam_node: %ld scans mapped (%ld queued, %ld dropped, %ld lost, %ld with clamped "
+        "odometry), %ld key maps, %ld loop closures",
+        s.scans_mapped, s.scans_queued, s.scans_dropped, scans_lost_.load(),
+        s.scans_without_odometry, s.key_maps, s.loop_closures);
   }
 }
 
@@ -241,10 +234,10 @@ bool GridslamNode::OnFinish(std_srvs::Trigger::Request& /*request*/,
   response.message = message;
   const CoreProgress s = core_->Progress();
   ROS_INFO(
-      "gridslam_node: finish: %s (%ld scans received, %ld mapped, %ld dropped, %ld without "
-      "TF; %ld key maps, %ld loop closures)",
-      message.c_str(), s.scans_received, s.scans_mapped, s.scans_dropped, s.scans_skipped,
-      s.key_maps, s.loop_closures);
+      "gridslam_node: finish: %s (%ld scans received, %ld mapped, %ld dropped, %ld lost, %ld "
+      "with clamped odometry; %ld key maps, %ld loop closures)",
+      message.c_str(), s.scans_received, s.scans_mapped, s.scans_dropped, scans_lost_.load(),
+      s.scans_without_odometry, s.key_maps, s.loop_closures);
   return true;
 }
 

@@ -1,9 +1,10 @@
 // gridslam_node (docs/ros.md "Mapping live"): subscribes to a sensor_msgs/LaserScan topic and the
-// odometry (TF odom -> base_link at each scan's stamp, or a nav_msgs/Odometry topic), looks up the
-// laser mounting (base -> laser) in TF, and feeds the mapping core (mapping_core.hpp). Publishes
-// /map (nav_msgs/OccupancyGrid, latched), /trajectory (nav_msgs/Path, latched) and the TF
-// map -> odom (at each scan's stamp and every ~tf_publish_period); serves ~save_map and ~finish
-// (std_srvs/Trigger). ROS callbacks run on one spinner thread; the mapping runs on the core's.
+// odometry (the TF odom -> base_link samples, or a nav_msgs/Odometry topic; the core interpolates
+// them at each scan's stamp), looks up the laser mounting (base -> laser) in TF, and feeds the
+// mapping core (mapping_core.hpp). Publishes /map (nav_msgs/OccupancyGrid, latched), /trajectory
+// (nav_msgs/Path, latched) and the TF map -> odom (at each scan's stamp and every
+// ~tf_publish_period); serves ~save_map and ~finish (std_srvs/Trigger). ROS callbacks run on one
+// spinner thread, /tf on its own (tf_subscriber.hpp), the mapping on the core's.
 #pragma once
 
 #include <atomic>
@@ -29,6 +30,12 @@ namespace gridslam::live {
 class GridslamNode {
  public:
   GridslamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+  /// Stops the TF thread first (it feeds the core), then the core.
+  ~GridslamNode();
+  GridslamNode(const GridslamNode&) = delete;
+  GridslamNode& operator=(const GridslamNode&) = delete;
+  GridslamNode(GridslamNode&&) = delete;
+  GridslamNode& operator=(GridslamNode&&) = delete;
   /// Reads the parameters and the gridslam configuration, subscribes and advertises. False (with
   /// a ROS_FATAL message) when the configuration is unusable.
   bool Start();
@@ -43,12 +50,12 @@ class GridslamNode {
   void PublishPose(std::int64_t stamp_ns, const PlanarPose& T_map_odom);
   void PublishMap(const GridOutput& map, const std::vector<StampedPose>& path);
 
+  /// TF thread: an odom -> X transform becomes an odometry sample when X is the base frame or
+  /// reaches it through fixed transforms (looked up once per X).
+  void OnTfOdometry(const geometry_msgs::TransformStamped& t);
   /// target <- source at `stamp`, waiting up to `timeout` seconds of wall time for TF to have it.
   std::optional<Transform3D> WaitForTransform(const std::string& target, const std::string& source,
                                               const ros::Time& stamp, double timeout);
-  /// The odometry at a scan's stamp (WaitForTransform); when TF has nothing after the stamp, the
-  /// newest sample if it is at most kMaxOdometryClamp older (the bag reader's clamping).
-  void LookUpOdometry(const ros::Time& stamp, ScanInput* scan);
   /// base -> laser (static), looked up once per laser frame; identity with a warning if absent.
   Transform3D Mounting(const std::string& laser_frame);
   /// Counts the scans that never reached OnScan; warns when there are new ones.
@@ -59,7 +66,7 @@ class GridslamNode {
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   NodeParams params_;
-  tf2::BufferCore tf_buffer_;  ///< kTfCacheSeconds of transforms.
+  tf2::BufferCore tf_buffer_;  ///< For the mounting and fixed chains (static transforms).
   std::unique_ptr<TfSubscriber> tf_subscriber_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Subscriber scan_sub_;
@@ -70,6 +77,8 @@ class GridslamNode {
   ros::ServiceServer finish_srv_;
   ros::WallTimer tf_timer_;
   std::map<std::string, Transform3D> mountings_;
+  /// TF thread: per child of odom, T_child_base (nullopt: no fixed chain to the base frame).
+  std::map<std::string, std::optional<Transform3D>> odometry_chains_;
   std::atomic<std::int64_t> newest_tf_ns_{0};  ///< Newest stamp of a published map -> odom.
   // Scans lost before OnScan (the subscriber queue overflowed), from the gaps in header.seq.
   SequenceGaps sequence_gaps_;

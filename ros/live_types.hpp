@@ -29,7 +29,7 @@ struct PlanarPose {
   double yaw = 0.0;
 };
 
-/// One sensor_msgs/LaserScan with what the adapter looked up for it in TF.
+/// One sensor_msgs/LaserScan with its laser mounting.
 struct ScanInput {
   std::int64_t stamp_ns = 0;  ///< header.stamp.
   float angle_min = 0.0F;     ///< [rad]
@@ -37,18 +37,16 @@ struct ScanInput {
   float range_min = 0.0F;  ///< [m]
   float range_max = 0.0F;
   std::vector<float> ranges;
-  /// TF odometry T_odom_base at the stamp; nullopt when the odometry comes from a topic
-  /// (interpolated by the core) or there is none.
-  std::optional<Transform3D> T_odom_base;
-  /// TF odometry: no sample after the stamp yet, T_odom_base is the newest (end of a recording).
-  bool odometry_clamped = false;
   Transform3D T_base_laser;  ///< Laser mounting (static TF base -> laser frame).
 };
 
-/// One nav_msgs/Odometry: header.stamp and pose.pose as T_odom_base.
+/// One odometry sample: a nav_msgs/Odometry (header.stamp, pose.pose), or a TF odom -> child
+/// transform; T_odom_base = T_odom_child * T_child_base, where T_child_base completes a TF
+/// odometry that ends in an intermediate frame (odom -> base_footprint, then base_link).
 struct OdometryInput {
   std::int64_t stamp_ns = 0;
-  Transform3D T_odom_base;
+  Transform3D T_odom_child;
+  std::optional<Transform3D> T_child_base;  ///< nullopt: the child is the base frame.
 };
 
 /// Where the odometry comes from.
@@ -76,9 +74,9 @@ struct StampedPose {
 struct CoreProgress {
   long scans_received = 0;
   long scans_mapped = 0;
-  long scans_dropped = 0;  ///< Unusable scans (no beams, non-finite geometry) or after Finish.
-  long scans_skipped = 0;  ///< Scans without TF odometry at their stamp (SkipScan).
-  long scans_without_odometry = 0;  ///< Topic odometry: clamped to the nearest sample.
+  long scans_dropped = 0;  ///< Unusable scans (no beams, non-finite geometry, no odometry yet)
+                           ///< or after Finish.
+  long scans_without_odometry = 0;  ///< Odometry clamped to the nearest sample (none after).
   long scans_queued = 0;
   long key_maps = 0;
   long loop_closures = 0;

@@ -113,7 +113,6 @@ struct MappingCore::Impl {
   std::atomic<long> received{0};
   std::atomic<long> mapped{0};
   std::atomic<long> dropped{0};
-  std::atomic<long> skipped{0};
   std::atomic<long> clamped{0};
   std::atomic<long> key_maps{0};
   std::atomic<long> closures{0};
@@ -263,11 +262,6 @@ void MappingCore::AddScan(ScanInput scan) {
   impl_->queue_changed.notify_all();
 }
 
-void MappingCore::SkipScan() {
-  ++impl_->received;
-  ++impl_->skipped;
-}
-
 void MappingCore::AddOdometry(const OdometryInput& odometry) {
   {
     const std::lock_guard<std::mutex> lock(impl_->queue_mutex);
@@ -290,7 +284,6 @@ CoreProgress MappingCore::Progress() const {
   s.scans_received = impl_->received;
   s.scans_mapped = impl_->mapped;
   s.scans_dropped = impl_->dropped;
-  s.scans_skipped = impl_->skipped;
   s.scans_without_odometry = impl_->clamped;
   {
     const std::lock_guard<std::mutex> lock(impl_->queue_mutex);
@@ -355,7 +348,6 @@ bool MappingCore::Finish(const std::string& dir, std::string* message) {
     report["node"] = {{"odometry", OdometryName(d.settings.odometry)},
                       {"scans_received", d.received.load()},
                       {"scans_dropped", d.dropped.load()},
-                      {"scans_skipped_without_tf_odometry", d.skipped.load()},
                       {"scans_with_clamped_odometry", d.clamped.load()},
                       {"maps_published", d.maps_published.load()}};
     auto output = app::OutputDir::Begin(dir);

@@ -1,12 +1,13 @@
 // The mapping core of gridslam_node (docs/ros.md "Mapping live"): pipeline::Mapper's online API
 // (docs/online_api.md) behind plain structs (live_types.hpp), so that the ROS adapter never sees
 // gridslam and gridslam never sees ROS. Scans are queued and mapped in order on the core's own
-// thread; with topic odometry a scan waits there (at most `odom_wait` of wall time) until an
-// odometry sample at or after its stamp has arrived, then its odometry is interpolated as the bag
-// reader does (recording/odometry_interpolation.hpp). After each scan the core reports map -> odom;
-// every `map_publish_period` of scan time it takes a Snapshot and reports the map and the
-// corrected trajectory. SaveMap and Finish write the same files as `gridslam map` (apps/,
-// MapSession). Every method may be called from any thread: the Mapper is guarded by one mutex.
+// thread, where a scan waits (at most `odom_wait` of wall time) until an odometry sample (TF or
+// topic) at or after its stamp has arrived; its odometry is then interpolated as the bag reader
+// does (recording/odometry_interpolation.hpp), so that the node maps what `gridslam map` maps.
+// After each scan the core reports map -> odom; every `map_publish_period` of scan time it takes a
+// Snapshot and reports the map and the corrected trajectory. SaveMap and Finish write the same
+// files as `gridslam map` (apps/, MapSession). Every method may be called from any thread: the
+// Mapper is guarded by one mutex.
 //
 // Standard library only in this header (it is compiled as C++17 by the adapter).
 #pragma once
@@ -24,7 +25,7 @@ struct CoreSettings {
   std::string config_path;             ///< gridslam YAML ("" = the defaults).
   std::vector<std::string> overrides;  ///< "section.key=value", applied after the file.
   OdometrySource odometry = OdometrySource::kTf;
-  double odom_wait = 0.5;           ///< Topic odometry: longest wait for a later sample [s].
+  double odom_wait = 0.5;  ///< Longest wait of a scan for an odometry sample after it [s, wall].
   double map_publish_period = 5.0;  ///< Map snapshot period in scan time [s]; <= 0: never.
   std::string session_name = "gridslam_node";  ///< The "log" of report.json.
 };
@@ -53,9 +54,7 @@ class MappingCore {
 
   /// Queues a scan (ignored after Finish).
   void AddScan(ScanInput scan);
-  /// Counts a scan the adapter could not use (no TF odometry at its stamp), for the report.
-  void SkipScan();
-  /// Adds a topic odometry sample (samples in stamp order).
+  /// Adds an odometry sample (TF or topic; any order).
   void AddOdometry(const OdometryInput& odometry);
 
   /// The latest transform reported by on_pose; false before the first mapped scan.

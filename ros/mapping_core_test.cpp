@@ -40,7 +40,7 @@ Transform3D ToTransform(const Pose2& pose) {
   return T;
 }
 
-ScanInput ToInput(const Frame& frame, bool with_tf_odometry) {
+ScanInput ToInput(const Frame& frame) {
   ScanInput in;
   in.stamp_ns = frame.time.time_since_epoch().count();
   in.angle_min = static_cast<float>(frame.scan.angle_min);
@@ -49,9 +49,6 @@ ScanInput ToInput(const Frame& frame, bool with_tf_odometry) {
   in.range_max = static_cast<float>(frame.scan.range_max);
   in.ranges = frame.scan.ranges;
   in.T_base_laser = ToTransform(frame.T_base_laser);
-  if (with_tf_odometry) {
-    in.T_odom_base = ToTransform(frame.T_odom_base);
-  }
   return in;
 }
 
@@ -95,8 +92,10 @@ TEST(FrameBuilder, BuildsFramesAsTheBagReader) {
   scan.ranges = {1.0F, 2.0F, 25.0F};
   scan.T_base_laser = ToTransform(Pose2(0.2, 0.0, 0.1));
   bool clamped = true;
-  EXPECT_FALSE(tf.Build(scan, &clamped).ok());  // TF odometry missing
-  scan.T_odom_base = ToTransform(Pose2(1.0, 2.0, 0.5));
+  EXPECT_FALSE(tf.Covers(scan.stamp_ns));
+  EXPECT_FALSE(tf.Build(scan, &clamped).ok());  // before the first odometry sample
+  tf.AddOdometry({scan.stamp_ns, ToTransform(Pose2(1.0, 2.0, 0.5)), std::nullopt});
+  EXPECT_TRUE(tf.Covers(scan.stamp_ns));
   auto frame = tf.Build(scan, &clamped);
   ASSERT_TRUE(frame.ok()) << frame.error().ToString();
   EXPECT_FALSE(clamped);
@@ -119,6 +118,27 @@ TEST(FrameBuilder, BuildsFramesAsTheBagReader) {
   EXPECT_FALSE(none.Build(scan, &clamped).ok());  // no beams
 }
 
+// TF odometry ending in an intermediate frame (odom -> base_footprint), completed by the fixed
+// base_footprint -> base_link, as the bag reader completes it.
+TEST(FrameBuilder, CompletesOdometryThroughAFixedTransform) {
+  FrameBuilder tf(io::CarmenOptions{}, OdometrySource::kTf);
+  const Pose2 T_odom_footprint(1.0, 2.0, 0.5);
+  const Pose2 T_footprint_base(0.1, 0.0, 0.2);
+  tf.AddOdometry({1000, ToTransform(T_odom_footprint), ToTransform(T_footprint_base)});
+  ScanInput scan;
+  scan.stamp_ns = 1000;
+  scan.angle_min = -1.0F;
+  scan.angle_increment = 0.5F;
+  scan.range_max = 30.0F;
+  scan.ranges = {1.0F, 2.0F};
+  bool clamped = true;
+  auto frame = tf.Build(scan, &clamped);
+  ASSERT_TRUE(frame.ok());
+  EXPECT_FALSE(clamped);
+  EXPECT_TRUE(
+      IsApprox(frame.value().T_odom_base, T_odom_footprint * T_footprint_base, 1e-12, 1e-12));
+}
+
 TEST(FrameBuilder, InterpolatesTopicOdometryAtTheScanStamp) {
   FrameBuilder topic(io::CarmenOptions{}, OdometrySource::kTopic);
   ScanInput scan;
@@ -130,8 +150,8 @@ TEST(FrameBuilder, InterpolatesTopicOdometryAtTheScanStamp) {
   bool clamped = false;
   EXPECT_FALSE(topic.Covers(scan.stamp_ns));
   EXPECT_FALSE(topic.Build(scan, &clamped).ok());  // before the first odometry sample
-  topic.AddOdometry({2'000'000'000, ToTransform(Pose2(2.0, 0.0, 0.4))});
-  topic.AddOdometry({1'000'000'000, ToTransform(Pose2(1.0, 0.0, 0.2))});  // late: sorted in
+  topic.AddOdometry({2'000'000'000, ToTransform(Pose2(2.0, 0.0, 0.4)), std::nullopt});
+  topic.AddOdometry({1'000'000'000, ToTransform(Pose2(1.0, 0.0, 0.2)), std::nullopt});  // late
   EXPECT_TRUE(topic.Covers(scan.stamp_ns));
   auto frame = topic.Build(scan, &clamped);
   ASSERT_TRUE(frame.ok());
@@ -161,18 +181,24 @@ TEST(MappingCore, BadConfigurationIsAnError) {
 }
 
 // The core maps every scan in order, as the batch mapper maps the same frames: the same final
-// trajectory, bit for bit; it reports a pose per scan, maps on the way, and writes the outputs.
+// trajectory; it reports a pose per scan, maps on the way, and writes the outputs.
 TEST(MappingCore, MapsLikeTheBatchMapperAndWritesTheSessionOutputs) {
   const std::vector<Frame> simulated = SimulatedFrames(240.0);
   ASSERT_GT(simulated.size(), 1000U);
   const SlamOptions options;
 
-  // The batch mapper on the frames the core builds from the same inputs.
+  // The batch mapper on the frames the core builds from the same inputs (an odometry sample at
+  // each scan's stamp).
+  const auto odometry = [](const Frame& f) {
+    return OdometryInput{f.time.time_since_epoch().count(), ToTransform(f.T_odom_base),
+                         std::nullopt};
+  };
   FrameBuilder builder(options.log, OdometrySource::kTf);
   pipeline::Mapper batch(options.Mapper(), 1);
   for (const Frame& f : simulated) {
     bool clamped = false;
-    batch.AddFrame(0, builder.Build(ToInput(f, true), &clamped).value());
+    builder.AddOdometry(odometry(f));
+    batch.AddFrame(0, builder.Build(ToInput(f), &clamped).value());
   }
   const pipeline::MapperResult expected = batch.Finish();
 
@@ -204,7 +230,8 @@ TEST(MappingCore, MapsLikeTheBatchMapperAndWritesTheSessionOutputs) {
   std::string message;
   EXPECT_FALSE(core->SaveMap(dir.string(), &message));  // nothing mapped yet
   for (const Frame& f : simulated) {
-    core->AddScan(ToInput(f, true));
+    core->AddOdometry(odometry(f));
+    core->AddScan(ToInput(f));
   }
   ASSERT_TRUE(WaitFor(
       [&] { return core->Progress().scans_mapped == static_cast<long>(simulated.size()); }));
@@ -249,7 +276,7 @@ TEST(MappingCore, MapsLikeTheBatchMapperAndWritesTheSessionOutputs) {
   EXPECT_TRUE(report.contains("quality"));
 
   // After Finish: later scans are ignored, a second Finish writes the same result again.
-  core->AddScan(ToInput(simulated.back(), true));
+  core->AddScan(ToInput(simulated.back()));
   EXPECT_EQ(core->Progress().scans_dropped, 1);
   EXPECT_TRUE(core->Finish(dir.string(), &message)) << message;
   fs::remove_all(dir);
@@ -267,13 +294,13 @@ TEST(MappingCore, TopicOdometryWaitsForALaterSample) {
   auto core = MappingCore::Create(settings, {}, &error);
   ASSERT_NE(core, nullptr) << error;
   const auto odometry = [&](std::size_t k) {
-    core->AddOdometry(
-        {simulated[k].time.time_since_epoch().count(), ToTransform(simulated[k].T_odom_base)});
+    core->AddOdometry({simulated[k].time.time_since_epoch().count(),
+                       ToTransform(simulated[k].T_odom_base), std::nullopt});
   };
   odometry(0);
   odometry(1);
-  core->AddScan(ToInput(simulated[1], false));
-  core->AddScan(ToInput(simulated[2], false));
+  core->AddScan(ToInput(simulated[1]));
+  core->AddScan(ToInput(simulated[2]));
   ASSERT_TRUE(WaitFor([&] { return core->Progress().scans_mapped == 1; }));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(core->Progress().scans_mapped, 1);  // the second waits for its odometry
@@ -286,15 +313,12 @@ TEST(MappingCore, TopicOdometryWaitsForALaterSample) {
   quick.odom_wait = 0.1;
   auto impatient = MappingCore::Create(quick, {}, &error);
   ASSERT_NE(impatient, nullptr) << error;
-  impatient->AddOdometry(
-      {simulated[0].time.time_since_epoch().count(), ToTransform(simulated[0].T_odom_base)});
-  impatient->AddScan(ToInput(simulated[1], false));
+  impatient->AddOdometry({simulated[0].time.time_since_epoch().count(),
+                          ToTransform(simulated[0].T_odom_base), std::nullopt});
+  impatient->AddScan(ToInput(simulated[1]));
   ASSERT_TRUE(WaitFor([&] { return impatient->Progress().scans_mapped == 1; }));
   EXPECT_EQ(impatient->Progress().scans_without_odometry, 1);
-  impatient->SkipScan();  // the adapter found no TF odometry: counted, not mapped
-  EXPECT_EQ(impatient->Progress().scans_skipped, 1);
-  EXPECT_EQ(impatient->Progress().scans_received, 2);
-  EXPECT_EQ(impatient->Progress().scans_mapped, 1);
+  EXPECT_EQ(impatient->Progress().scans_received, 1);
 }
 
 }  // namespace

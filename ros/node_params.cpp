@@ -44,6 +44,9 @@ bool ReadNodeParams(const ros::NodeHandle& private_nh, NodeParams* params, std::
   private_nh.param("transform_tolerance", p.transform_tolerance, p.transform_tolerance);
   private_nh.param("scan_queue_size", p.scan_queue_size, p.scan_queue_size);
   private_nh.param("output_dir", p.output_dir, p.output_dir);
+  if (p.core.odometry == OdometrySource::kTf) {
+    p.core.odom_wait = p.tf_timeout;  // the core waits for TF samples as for topic ones
+  }
   if (p.map_frame.empty() || p.odom_frame.empty() || p.base_frame.empty()) {
     *error = "~map_frame, ~odom_frame and ~base_frame must not be empty";
     return false;

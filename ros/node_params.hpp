@@ -18,11 +18,11 @@ struct NodeParams {
   std::string map_frame = "map";
   std::string odom_frame = "odom";
   std::string base_frame = "base_link";
-  double tf_timeout = 0.2;                  ///< Wait for odom -> base at a scan's stamp [s, wall].
-  double mounting_timeout = 1.0;            ///< Wait for base -> laser at the first scan [s, wall].
-  double tf_publish_period = 0.05;          ///< Re-publication of map -> odom [s, wall]; 0 = off.
-  double transform_tolerance = 0.1;         ///< Future-dating of the re-published map -> odom [s].
-  int scan_queue_size = 2000;               ///< Subscriber queue of ~scan_topic [messages].
+  double tf_timeout = 0.2;           ///< TF odometry: wait for a sample after a scan [s, wall].
+  double mounting_timeout = 1.0;     ///< Wait for base -> laser at the first scan [s, wall].
+  double tf_publish_period = 0.05;   ///< Re-publication of map -> odom [s, wall]; 0 = off.
+  double transform_tolerance = 0.1;  ///< Future-dating of the re-published map -> odom [s].
+  int scan_queue_size = 2000;        ///< Subscriber queue of ~scan_topic [messages].
   std::string output_dir = "gridslam_map";  ///< Default folder of the services.
 };
 

@@ -11,8 +11,12 @@ constexpr std::uint32_t kTfQueue = 100'000;  // messages: minutes of /tf at 20x 
 
 }  // namespace
 
-TfSubscriber::TfSubscriber(tf2::BufferCore* buffer, std::string skip_parent, std::string skip_child)
-    : buffer_(buffer), skip_parent_(std::move(skip_parent)), skip_child_(std::move(skip_child)) {
+TfSubscriber::TfSubscriber(tf2::BufferCore* buffer, std::string skip_parent, std::string skip_child,
+                           Callback on_dynamic)
+    : buffer_(buffer),
+      skip_parent_(std::move(skip_parent)),
+      skip_child_(std::move(skip_child)),
+      on_dynamic_(std::move(on_dynamic)) {
   nh_.setCallbackQueue(&queue_);
   tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>(
       "/tf", kTfQueue,
@@ -49,6 +53,9 @@ void TfSubscriber::Store(const tf2_msgs::TFMessage::ConstPtr& msg, bool is_stati
       buffer_->setTransform(t, "tf", is_static);
     } catch (const tf2::TransformException& e) {
       ROS_WARN_THROTTLE(5.0, "gridslam_node: transform refused by tf2: %s", e.what());
+    }
+    if (!is_static && on_dynamic_) {
+      on_dynamic_(t);
     }
   }
 }
