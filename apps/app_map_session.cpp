@@ -1,6 +1,7 @@
 #include "app_map_session.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -47,7 +48,11 @@ nlohmann::json MapSession::Report(const pipeline::MapperResult& result) const {
 
 Result<std::string> MapSession::Write(const std::string& dir, const pipeline::MapperResult& result,
                                       nlohmann::json report, const std::string& producer) const {
+  const auto checked = std::chrono::steady_clock::now();
   auto quality = RunSelfCheck(dir, result, quality_scans_, options_.quality, options_.fusion);
+  report["time_s"]["self_check"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
+  report["threads"] = options_.compute.Threads();
   if (!quality.ok()) {
     return quality.error();
   }

@@ -44,6 +44,25 @@ cv::Mat ObstacleImage(const KeyMapCells& cells) {
   return image;
 }
 
+cv::Mat GridImage(const KeyMapCells& cells) {
+  const MapLimits& limits = cells.Limits();
+  cv::Mat image(limits.Height(), limits.Width(), CV_8U, cv::Scalar(128));
+  auto* pixels = image.ptr<std::uint8_t>();
+  ForEachBit(cells.ObservedBits(), [&](std::size_t k) { pixels[k] = 255; });
+  ForEachBit(cells.ObstacleBits(), [&](std::size_t k) { pixels[k] = 0; });
+  return image;
+}
+
+void SquaredObstacleDistances(const KeyMapCells& cells,
+                              distance_transform::SquaredDistanceField& field) {
+  const MapLimits& limits = cells.Limits();
+  thread_local std::vector<std::uint8_t> sources;
+  sources.assign(static_cast<std::size_t>(limits.NumCells()), 0);
+  ForEachBit(cells.ObstacleBits(), [&](std::size_t k) { sources[k] = 1; });
+  distance_transform::SquaredEuclideanDistanceTransform(sources.data(), limits.Width(),
+                                                        limits.Height(), field);
+}
+
 KeyMapGeometry ComputeGeometry(const KeyMapCells& cells, const cv::Mat* distance_cells) {
   const MapLimits& limits = cells.Limits();
   const auto n = static_cast<std::size_t>(limits.NumCells());
@@ -61,12 +80,8 @@ KeyMapGeometry ComputeGeometry(const KeyMapCells& cells, const cv::Mat* distance
         << "distance image of another size";
     d = distance_cells->ptr<float>();
   } else {
-    thread_local std::vector<std::uint8_t> sources;
     thread_local distance_transform::SquaredDistanceField field;
-    sources.assign(n, 0);
-    ForEachBit(cells.ObstacleBits(), [&](std::size_t k) { sources[k] = 1; });
-    distance_transform::SquaredEuclideanDistanceTransform(sources.data(), limits.Width(),
-                                                          limits.Height(), field);
+    SquaredObstacleDistances(cells, field);
     cells_distance.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       cells_distance[k] = std::sqrt(field.squared[k]);

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
 
+#include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/grid/grid2d.hpp"
 
 namespace gridslam::description {
@@ -63,6 +64,14 @@ struct KeyMapGeometry {
 /// The binary obstacle image of the cells, CV_8U: obstacles 0, the rest 255 (pixel (u, v) = cell
 /// (i, j)).
 cv::Mat ObstacleImage(const KeyMapCells& cells);
+
+/// The occupancy image of the cells, CV_8U: obstacles 0, observed 255, the rest 128.
+cv::Mat GridImage(const KeyMapCells& cells);
+
+/// The squared distance of every cell to the nearest obstacle [cells^2] (+inf without any), as
+/// distance_transform::DistanceTransformCells(ObstacleImage(cells)) squared: the same numbers.
+void SquaredObstacleDistances(const KeyMapCells& cells,
+                              distance_transform::SquaredDistanceField& field);
 
 /// The geometry of `cells`. `distance_cells`, if given, is the distance transform of
 /// ObstacleImage(cells) in cells (distance_transform::DistanceTransformCells), else it is

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -50,24 +51,43 @@ KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
   const int height = limits.Height();
   KeyMapImages images;
   images.obstacle = ObstacleImage(cells);
-  images.grid = cv::Mat(height, width, CV_8U);
-  for (int j = 0; j < height; ++j) {
-    const auto* obstacle_row = images.obstacle.ptr<std::uint8_t>(j);
-    auto* grid_row = images.grid.ptr<std::uint8_t>(j);
-    for (int i = 0; i < width; ++i) {
-      grid_row[i] = obstacle_row[i] == 0 ? 0 : (cells.Observed(i, j) ? 255 : 128);
-    }
+  images.grid = GridImage(cells);
+  // distance_transform::DistanceTransformCells(images.obstacle), from the squared distances.
+  thread_local distance_transform::SquaredDistanceField field;
+  SquaredObstacleDistances(cells, field);
+  images.distance_cells = cv::Mat(height, width, CV_32F);
+  auto* distance_cells = images.distance_cells.ptr<float>();
+  for (std::size_t k = 0; k < field.squared.size(); ++k) {
+    distance_cells[k] = std::sqrt(field.squared[k]);
   }
-  images.distance_cells = distance_transform::DistanceTransformCells(images.obstacle);
-  const cv::Mat& distance_cells = images.distance_cells;
   if (options_.minmax_normalization) {
-    cv::Mat finite = distance_cells.clone();
+    cv::Mat finite = images.distance_cells.clone();
     cv::patchNaNs(finite, 0.0);
     finite.setTo(0.0F, finite == std::numeric_limits<float>::infinity());
     cv::normalize(finite, images.distance, 0, 255, cv::NORM_MINMAX, CV_8U);
-  } else {
-    const double clamp_cells = options_.distance_clamp / limits.Resolution();
-    images.distance = distance_transform::DistanceToImage(distance_cells, clamp_cells);
+    return images;
+  }
+  // distance_transform::DistanceToImage(images.distance_cells, clamp): the squared distances are
+  // whole numbers, so the pixel of each one below the clamp comes from a table.
+  const double clamp_cells = options_.distance_clamp / limits.Resolution();
+  const double clamp_squared = std::ceil(clamp_cells * clamp_cells);
+  if (clamp_squared > 65536.0) {
+    images.distance = distance_transform::DistanceToImage(images.distance_cells, clamp_cells);
+    return images;
+  }
+  const auto table_size = static_cast<std::size_t>(clamp_squared) + 1;
+  std::vector<std::uint8_t> table(table_size);
+  for (std::size_t q = 0; q < table_size; ++q) {
+    const double d = std::min(static_cast<double>(std::sqrt(static_cast<float>(q))), clamp_cells);
+    table[q] = cv::saturate_cast<std::uint8_t>(d / clamp_cells * 255.0);
+  }
+  const std::uint8_t beyond = cv::saturate_cast<std::uint8_t>(clamp_cells / clamp_cells * 255.0);
+  images.distance = cv::Mat(height, width, CV_8U);
+  auto* pixels = images.distance.ptr<std::uint8_t>();
+  const auto last = static_cast<float>(table_size - 1);
+  for (std::size_t k = 0; k < field.squared.size(); ++k) {
+    const float q = field.squared[k];
+    pixels[k] = q <= last ? table[static_cast<std::size_t>(q)] : beyond;
   }
   return images;
 }
@@ -111,10 +131,14 @@ KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const
       kp.pt.y -= shift;
       return !(kp.pt.x >= 0.0F && kp.pt.y >= 0.0F && kp.pt.x <= max_x && kp.pt.y <= max_y);
     });
+    detector_->compute(describe_on, keypoints, descriptors);
+  } else if (const auto* surf = dynamic_cast<const features::SurfFeature2D*>(detector_.get());
+             surf != nullptr && &detect_on == &describe_on) {
+    surf->DetectThenDescribe(detect_on, keypoints, descriptors);  // one integral image
   } else {
     detector_->detect(detect_on, keypoints);
+    detector_->compute(describe_on, keypoints, descriptors);
   }
-  detector_->compute(describe_on, keypoints, descriptors);
 
   matching::FeatureSet& features = description.features;
   features.descriptors = descriptors;

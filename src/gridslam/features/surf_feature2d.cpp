@@ -58,31 +58,65 @@ void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     std::erase_if(keypoints,
                   [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
   } else {
-    keypoints = DetectFastHessian(integral, options_);
-    const cv::Mat m = mask.getMat();
-    if (!m.empty()) {
-      GRIDSLAM_CHECK(m.type() == CV_8UC1 && m.size() == img.size()) << "bad mask";
-      std::erase_if(keypoints, [&](const cv::KeyPoint& kp) {
-        return m.at<std::uint8_t>(cvRound(kp.pt.y), cvRound(kp.pt.x)) == 0;
-      });
-    }
-    if (options_.max_features > 0 &&
-        keypoints.size() > static_cast<std::size_t>(options_.max_features)) {
-      keypoints.resize(static_cast<std::size_t>(options_.max_features));
-    }
+    Detect(integral, mask.getMat(), keypoints);
   }
+  Orient(integral, use_provided_keypoints, keypoints);
+  if (descriptors.needed()) {
+    Describe(integral, keypoints, descriptors);
+  }
+}
+
+void SurfFeature2D::DetectThenDescribe(const cv::Mat& img, std::vector<cv::KeyPoint>& keypoints,
+                                       cv::Mat& descriptors) const {
+  GRIDSLAM_CHECK(img.empty() || img.type() == CV_8UC1)
+      << "SurfFeature2D needs a CV_8UC1 image, got type " << img.type();
+  if (img.empty()) {
+    keypoints.clear();
+    descriptors.release();
+    return;
+  }
+  // detect(): detection and orientation; compute(): keypoints inside the image, descriptors.
+  const IntegralImage integral(img);
+  Detect(integral, cv::Mat(), keypoints);
+  Orient(integral, false, keypoints);
+  std::erase_if(keypoints, [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
+  Orient(integral, true, keypoints);
+  Describe(integral, keypoints, descriptors);
+}
+
+void SurfFeature2D::Detect(const IntegralImage& integral, const cv::Mat& mask,
+                           std::vector<cv::KeyPoint>& keypoints) const {
+  keypoints = DetectFastHessian(integral, options_);
+  if (!mask.empty()) {
+    GRIDSLAM_CHECK(mask.type() == CV_8UC1 && mask.rows == integral.height() &&
+                   mask.cols == integral.width())
+        << "bad mask";
+    std::erase_if(keypoints, [&](const cv::KeyPoint& kp) {
+      return mask.at<std::uint8_t>(cvRound(kp.pt.y), cvRound(kp.pt.x)) == 0;
+    });
+  }
+  if (options_.max_features > 0 &&
+      keypoints.size() > static_cast<std::size_t>(options_.max_features)) {
+    keypoints.resize(static_cast<std::size_t>(options_.max_features));
+  }
+}
+
+void SurfFeature2D::Orient(const IntegralImage& integral, bool provided,
+                           std::vector<cv::KeyPoint>& keypoints) const {
   for (cv::KeyPoint& kp : keypoints) {
     if (options_.upright) {
       kp.angle = -1.0F;
-    } else if (!use_provided_keypoints || kp.angle < 0.0F) {
+    } else if (!provided || kp.angle < 0.0F) {
       float deg = AssignOrientation(integral, kp.pt.x, kp.pt.y, ScaleOfSize(kp.size)) * kRadToDeg;
       deg = deg < 0.0F ? deg + 360.0F : deg;
       kp.angle = deg >= 360.0F ? 0.0F : deg;
     }
   }
-  if (!descriptors.needed()) {
-    return;
-  }
+}
+
+void SurfFeature2D::Describe(const IntegralImage& integral,
+                             const std::vector<cv::KeyPoint>& keypoints,
+                             cv::OutputArray descriptors) const {
   const int n = static_cast<int>(keypoints.size());
   descriptors.create(n, descriptorSize(), CV_32F);
   cv::Mat out = descriptors.getMat();

@@ -17,6 +17,7 @@
 #include <opencv2/features2d.hpp>
 
 #include "gridslam/common/result.hpp"
+#include "gridslam/features/integral_image.hpp"
 #include "gridslam/features/surf_options.hpp"
 
 namespace gridslam::features {
@@ -40,7 +41,20 @@ class SurfFeature2D : public cv::Feature2D {
 
   [[nodiscard]] const SurfOptions& options() const { return options_; }
 
+  /// detect(image, keypoints) followed by compute(image, keypoints, descriptors) on the same
+  /// image, with one integral image instead of two (the same keypoints and descriptors).
+  void DetectThenDescribe(const cv::Mat& image, std::vector<cv::KeyPoint>& keypoints,
+                          cv::Mat& descriptors) const;
+
  private:
+  void Detect(const IntegralImage& integral, const cv::Mat& mask,
+              std::vector<cv::KeyPoint>& keypoints) const;
+  /// Orientation of every keypoint (`provided`: only of those without one).
+  void Orient(const IntegralImage& integral, bool provided,
+              std::vector<cv::KeyPoint>& keypoints) const;
+  void Describe(const IntegralImage& integral, const std::vector<cv::KeyPoint>& keypoints,
+                cv::OutputArray descriptors) const;
+
   SurfOptions options_;
 };
 

@@ -32,6 +32,7 @@ Eigen::Vector3d Invert(const Eigen::Vector3d& z) {
 
 SgdOptimizer::SgdOptimizer(SgdOptions options) : options_(std::move(options)) {
   GRIDSLAM_CHECK(options_.Validate().ok()) << options_.Validate().error().ToString();
+  toro_ = options_.variant == "toro";
 }
 
 SgdOptimizer::SgdOptimizer(const PoseGraph& graph, SgdOptions options)

@@ -112,9 +112,14 @@ class SgdOptimizer {
   std::vector<int> sorted_;  ///< Edge indices by ascending level of their top.
   Eigen::Vector3d gamma_ = Eigen::Vector3d::Ones();
 
+  /// precond_ inverted per dimension (set with it, once per iteration).
+  std::vector<Eigen::Vector3d> inv_precond_;
+  bool toro_ = false;  ///< options_.variant == "toro".
+
   // Scratch space of one edge update.
   std::vector<int> branch1_;
   std::vector<int> branch2_;
+  std::vector<int> free_;  ///< The free vertices of branch1_ then branch2_, in order.
 };
 
 }  // namespace gridslam::pose_graph

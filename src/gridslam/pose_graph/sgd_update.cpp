@@ -53,7 +53,7 @@ void SgdOptimizer::ComputePreconditioner() {
   constexpr double kMax = std::numeric_limits<double>::max();
   gamma_ = Eigen::Vector3d::Constant(kMax);
   std::fill(precond_.begin(), precond_.end(), Eigen::Vector3d::Zero());
-  const bool toro = options_.variant == "toro";
+  const bool toro = toro_;
   for (const SgdEdge& edge : edges_) {
     // TORO rotates by the measurement's own angle; "g2o" by the predicted pose's.
     const double theta = toro ? edge.z.z() : pose_[U(edge.v1)].z() + edge.z.z();
@@ -76,25 +76,41 @@ void SgdOptimizer::ComputePreconditioner() {
       gamma_[d] = 1.0;  // No free constraint, or a zero information entry somewhere.
     }
   }
+  inv_precond_.resize(precond_.size());
+  for (std::size_t v = 0; v < precond_.size(); ++v) {
+    inv_precond_[v] = precond_[v].cwiseInverse();
+  }
 }
 
 void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
-  const int free1 = CollectBranch(edge.v1, edge.top, branch1_);
-  const int free2 = CollectBranch(edge.v2, edge.top, branch2_);
-  const int length = free1 + free2;
-  if (length == 0) {
-    return;  // Both ends fixed.
-  }
-  // Poses relative to the stored pose of the top (TORO's getPose).
+  // Poses relative to the stored pose of the top (TORO's getPose): the top's pose plus the
+  // parameters up each branch (CollectBranch's walk, summed as it goes), and the free vertices of
+  // both branches in order (the loops below visit only them).
   const Eigen::Vector3d base =
       edge.top < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(pose_[U(edge.top)]);
+  free_.clear();
   Eigen::Vector3d p1 = base;
-  for (const int v : branch1_) {
-    p1 += param_[U(v)];
+  branch1_.clear();
+  for (int n = edge.v1; n != edge.top; n = parent_[U(n)]) {
+    branch1_.push_back(n);
+    p1 += param_[U(n)];
+    if (!fixed_[U(n)]) {
+      free_.push_back(n);
+    }
   }
+  const std::size_t split = free_.size();
   Eigen::Vector3d p2 = base;
-  for (const int v : branch2_) {
-    p2 += param_[U(v)];
+  branch2_.clear();
+  for (int n = edge.v2; n != edge.top; n = parent_[U(n)]) {
+    branch2_.push_back(n);
+    p2 += param_[U(n)];
+    if (!fixed_[U(n)]) {
+      free_.push_back(n);
+    }
+  }
+  const int length = static_cast<int>(free_.size());
+  if (length == 0) {
+    return;  // Both ends fixed.
   }
   // Residual r = (p1 (+) Z) - p2 in the global frame, theta wrapped.
   const double c1 = std::cos(p1.z());
@@ -103,7 +119,7 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
                           p1.y() + s1 * edge.z.x() + c1 * edge.z.y() - p2.y(),
                           NormalizeAngle(p1.z() + edge.z.z() - p2.z()));
   // W = R Omega R^T with R = R(theta_1 + theta_z) ("g2o") or R(theta_1) ("toro").
-  const bool toro = options_.variant == "toro";
+  const bool toro = toro_;
   const double cw = toro ? c1 : c1 * edge.cos_z - s1 * edge.sin_z;
   const double sw = toro ? s1 : s1 * edge.cos_z + c1 * edge.sin_z;
   const Eigen::Vector3d d = 2.0 * RotatedProduct(edge.information, cw, sw, r);
@@ -112,20 +128,12 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
   // slower nodes take a proportionally smaller share. A node's share is 1 / (M t) per
   // dimension (TORO: 1 / M, all t equal in batch use).
   double t_edge = std::numeric_limits<double>::max();
-  for (const auto* branch : {&branch1_, &branch2_}) {
-    for (const int v : *branch) {
-      if (!fixed_[U(v)]) {
-        t_edge = std::min(t_edge, age_[U(v)]);
-      }
-    }
+  for (const int v : free_) {
+    t_edge = std::min(t_edge, age_[U(v)]);
   }
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
-  for (const auto* branch : {&branch1_, &branch2_}) {
-    for (const int v : *branch) {
-      if (!fixed_[U(v)]) {
-        total += (t_edge / age_[U(v)]) * precond_[U(v)].cwiseInverse();
-      }
-    }
+  for (const int v : free_) {
+    total += (t_edge / age_[U(v)]) * inv_precond_[U(v)];
   }
   Eigen::Vector3d beta;
   for (int dim = 0; dim < 3; ++dim) {
@@ -139,15 +147,16 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
   for (int dir = 0; dir < 2; ++dir) {
     const auto& branch = dir == 0 ? branch1_ : branch2_;
     const double sign = dir == 0 ? -1.0 : 1.0;  // Move p1 towards p2 and p2 towards p1 (+) Z.
-    for (const int v : branch) {
-      if (!fixed_[U(v)]) {
-        param_[U(v)] +=
-            (sign * t_edge / age_[U(v)]) * beta.cwiseProduct(precond_[U(v)].cwiseInverse());
-      }
+    const std::size_t begin = dir == 0 ? 0 : split;
+    const std::size_t end = dir == 0 ? split : free_.size();
+    for (std::size_t f = begin; f < end; ++f) {
+      const int v = free_[f];
+      param_[U(v)] += (sign * t_edge / age_[U(v)]) * beta.cwiseProduct(inv_precond_[U(v)]);
     }
-    // Poses along the branch, from the top down (TORO's updatePoseChain).
+    // Poses along the branch, from the top down (TORO's updatePoseChain; PoseFromParam).
     for (auto it = branch.rbegin(); it != branch.rend(); ++it) {
-      pose_[U(*it)] = PoseFromParam(*it);
+      const int p = parent_[U(*it)];
+      pose_[U(*it)] = p < 0 ? param_[U(*it)] : Eigen::Vector3d(pose_[U(p)] + param_[U(*it)]);
     }
   }
 }
