@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "gridslam/grid/cell_shift.hpp"
 #include "gridslam/grid/map_limits.hpp"
 
 namespace gridslam {
@@ -29,6 +30,15 @@ class Grid2D {
   [[nodiscard]] std::size_t size() const { return cells_.size(); }
   [[nodiscard]] std::vector<T>& Cells() { return cells_; }
   [[nodiscard]] const std::vector<T>& Cells() const { return cells_; }
+
+  /// Moves the grid by (di, dj) cells in place: new (i, j) = old (i + di, j + dj), the origin
+  /// moves by (di, dj) cells, entering cells get `fill` (T trivially copyable).
+  void Shift(int di, int dj, const T& fill) {
+    ShiftCellsInPlace(cells_, Width(), Height(), di, dj, fill);
+    limits_ = MapLimits(limits_.Resolution(),
+                        limits_.Origin() + Eigen::Vector2d(di, dj) * limits_.Resolution(), Width(),
+                        Height());
+  }
 
  private:
   [[nodiscard]] std::size_t Index(int i, int j) const {

@@ -9,10 +9,23 @@ int LocalMapOptions::NumCells() const {
   return n % 2 == 0 ? n + 1 : n;
 }
 
+double LocalMapOptions::MatchingSize() const {
+  return matching_size > 0.0 ? matching_size : 2.0 * (max_range + shift_distance);
+}
+
+LocalMapOptions LocalMapOptions::MatchingWindow() const {
+  LocalMapOptions options = *this;
+  options.size = MatchingSize();
+  options.matching_size = options.size;
+  return options;
+}
+
 Status LocalMapOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(resolution > 0.0, "local_map.resolution > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(size >= 10 * resolution, "local_map.size >= 10 cells"));
   GRIDSLAM_RETURN_IF_ERROR(Require(size / resolution <= 8000, "local_map.size <= 8000 cells"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(matching_size >= 0.0 && MatchingSize() / resolution <= 8000,
+                                   "local_map.matching_size >= 0 (0 = automatic), <= 8000 cells"));
   GRIDSLAM_RETURN_IF_ERROR(Require(shift_distance > 0.0 && shift_distance < 0.5 * size,
                                    "0 < local_map.shift_distance < size / 2"));
   for (const double p : {hit_probability, miss_probability, min_probability, max_probability,

@@ -13,6 +13,13 @@ struct LocalMapOptions {
   /// returns that hold the heading: drift on intel falls from 0.29 m (15 m) to 0.13 m (25 m) on
   /// all benchmark relations (docs/front_end.md).
   double size = 25.0;
+  /// Side of the window the scan matcher sees [m]; 0 = 2 (max_range + shift_distance), so that
+  /// every return inserted lies inside it wherever the robot is in its recentring margin. When it
+  /// is larger than `size`, the front end keeps a second, larger window for matching only; the
+  /// key maps stay the central part of the `size` window. In a hall or outdoors most returns lie
+  /// beyond 12.5 m, and a corridor's end walls are what holds the estimate along it; a window
+  /// that cuts them off leaves the matcher blind there (docs/front_end.md "Matching window").
+  double matching_size = 0.0;
   double shift_distance = 1.0;        ///< Recentre when the robot is this far from the centre [m].
   double hit_probability = 0.7;       ///< Inverse sensor model at a beam's end cell.
   double miss_probability = 0.45;     ///< Inverse sensor model along the beam.
@@ -29,12 +36,19 @@ struct LocalMapOptions {
 
   /// Number of cells along each side (odd, so the window has a centre cell).
   [[nodiscard]] int NumCells() const;
+  /// The matching window's side [m]: matching_size, or its automatic value when 0.
+  [[nodiscard]] double MatchingSize() const;
+  /// These options with `size` = MatchingSize(): the matching window's.
+  [[nodiscard]] LocalMapOptions MatchingWindow() const;
 
   template <class V>
   void Visit(V& v) {
     v("resolution", resolution, "Cell side [m]");
     v("size", size,
       "Side of the rolling window [m] (the cell count is made odd); key maps are its centre");
+    v("matching_size", matching_size,
+      "Side of the window scans are matched against [m]; 0 = 2 (max_range + shift_distance), "
+      "every inserted return inside it; larger than size: a second window, for matching only");
     v("shift_distance", shift_distance,
       "The window is shifted (in whole cells) when the robot is this far from its centre [m]");
     v("hit_probability", hit_probability, "Occupancy probability of a beam's end cell");

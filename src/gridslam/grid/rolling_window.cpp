@@ -14,63 +14,6 @@ namespace {
 // Beyond this many listed changes per update the consumer rebuilds everything anyway.
 constexpr std::size_t kMaxListedChanges = 1U << 16;
 
-// Returns `grid` moved by (di, dj) cells: new (i, j) = old (i + di, j + dj); the origin moves by
-// (di, dj) cells, entering cells get `fill`.
-template <typename T>
-Grid2D<T> Shifted(const Grid2D<T>& grid, int di, int dj, const T& fill) {
-  const MapLimits& old = grid.Limits();
-  const MapLimits limits(old.Resolution(),
-                         old.Origin() + Eigen::Vector2d(di, dj) * old.Resolution(), old.Width(),
-                         old.Height());
-  Grid2D<T> out(limits, fill);
-  const int w = old.Width();
-  const int i0 = std::max(0, -di);
-  const int i1 = std::min(w, w - di);
-  if (i0 >= i1) {
-    return out;
-  }
-  for (int j = 0; j < old.Height(); ++j) {
-    const int src_j = j + dj;
-    if (src_j < 0 || src_j >= old.Height()) {
-      continue;
-    }
-    std::copy(&grid(i0 + di, src_j), &grid(i0 + di, src_j) + (i1 - i0), &out(i0, j));
-  }
-  return out;
-}
-
-// Moves a row-major w x h array in place by (di, dj) cells (new (i, j) = old (i + di, j + dj));
-// entering cells get `fill`. T must be trivially copyable.
-template <typename T>
-void ShiftInPlace(std::vector<T>& cells, int w, int h, int di, int dj, const T& fill) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  const auto uw = static_cast<std::size_t>(w);
-  const int i0 = std::max(0, -di);  // first destination column with a source
-  const int i1 = std::min(w, w - di);
-  const auto count = static_cast<std::size_t>(std::max(0, i1 - i0));
-  auto move_row = [&](int j) {
-    T* row = cells.data() + static_cast<std::size_t>(j) * uw;
-    const int src_j = j + dj;
-    if (src_j < 0 || src_j >= h || count == 0) {
-      std::fill(row, row + uw, fill);
-      return;
-    }
-    const T* src = cells.data() + static_cast<std::size_t>(src_j) * uw + (i0 + di);
-    std::memmove(static_cast<void*>(row + i0), static_cast<const void*>(src), count * sizeof(T));
-    std::fill(row, row + i0, fill);
-    std::fill(row + i0 + count, row + uw, fill);
-  };
-  if (dj >= 0) {  // sources lie at or after their destinations: go forwards
-    for (int j = 0; j < h; ++j) {
-      move_row(j);
-    }
-  } else {
-    for (int j = h - 1; j >= 0; --j) {
-      move_row(j);
-    }
-  }
-}
-
 }  // namespace
 
 RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector2d& centre_odom,
@@ -119,14 +62,14 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   if ((shift == 0).all()) {
     return shift;
   }
-  log_odds_ = Shifted(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
-  obstacles_ = Shifted(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
+  log_odds_.Shift(shift.x(), shift.y(), kUnknownLogOdds);
+  obstacles_.Shift(shift.x(), shift.y(), std::uint8_t{0});
   if (track_surfaces_) {
-    ShiftInPlace(surfaces_, Limits().Width(), Limits().Height(), shift.x(), shift.y(),
-                 CellSurface{});
+    ShiftCellsInPlace(surfaces_, Limits().Width(), Limits().Height(), shift.x(), shift.y(),
+                      CellSurface{});
   }
-  std::fill(stamps_.begin(), stamps_.end(), 0U);
-  stamp_ = 0;
+  // The stamps stay where they are: every one of them is older than the next scan's stamp, so
+  // they cannot collide with it wherever they now lie.
   num_obstacles_ = std::count(obstacles_.Cells().begin(), obstacles_.Cells().end(), 1);
   // Pending changes follow their cells; those that left are dropped.
   const int w = Limits().Width();

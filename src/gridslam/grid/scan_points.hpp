@@ -38,7 +38,7 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
 /// The returns of a scan alone (no normals, no no-return directions).
 struct ScanReturns {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< Laser position in the base frame [m].
-  std::vector<Eigen::Vector2d> points;  ///< As ScanPoints::points, the same numbers.
+  std::vector<Eigen::Vector2d> points;               ///< As ScanPoints::points, the same numbers.
 };
 
 /// ExtractScanPoints' points and origin without the rest (for ray casting and replays).

@@ -150,7 +150,8 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                   const MotionPrediction& prediction,
                                                   const Eigen::Matrix3d& velocity_information,
                                                   const Eigen::Matrix3d& odometry_information,
-                                                  FrontEndStep* step) {
+                                                  FrontEndStep* step, bool* velocity_preferred) {
+  *velocity_preferred = false;
   const double good = options_.matcher.good_score;
   const Pose2& centre = prediction.constant_velocity;
   if (prediction.check == OdometryCheck::kDoubtful) {
@@ -158,23 +159,28 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // unless the scan clearly prefers another pose. The constant velocity overrules it only
     // when it explains the scan well, clearly better, and at another pose; a failed or poor
     // match is no evidence against the odometry.
-    const MatchResult from_odometry =
-        matcher_.Match(*window_, field_, points, prediction.odometry, odometry_information);
+    const MatchResult from_odometry = matcher_.Match(*MatchingWindow(), field_, points,
+                                                     prediction.odometry, odometry_information);
     const MatchResult from_velocity =
-        matcher_.Match(*window_, field_, points, centre, velocity_information, kModel);
+        matcher_.Match(*MatchingWindow(), field_, points, centre, velocity_information, kModel);
     const Pose2 difference = Between(from_velocity.T_odom_base, from_odometry.T_odom_base);
     const bool same = difference.translation().norm() < kSamePoseXy &&
                       std::abs(difference.theta()) < kSamePoseTheta;
+    // Both matches search the same small region around their own prediction, so their scores
+    // compare like for like: the better explained pose wins by a clear margin, whatever the
+    // scene's usual score (a hall's returns fit worse than an office's everywhere).
     const bool overrule =
-        from_velocity.ok && from_velocity.score >= good && !same &&
+        from_velocity.ok && !same &&
         (!from_odometry.ok || from_velocity.score > from_odometry.score + kScoreMargin);
+    *velocity_preferred = overrule;
     // No wide search here: the robot moved smoothly even if its odometry jumped, so the pose is
     // near the constant velocity, whose match already searches around it (±0.3 m, ±0.25 rad).
     // A wide search against a doubtful odometry found look-alike poses a metre sideways in
     // halls the scan barely constrains (fr-clinic).
     return overrule ? from_velocity : from_odometry;
   }
-  MatchResult best = matcher_.Match(*window_, field_, points, centre, velocity_information, kModel);
+  MatchResult best =
+      matcher_.Match(*MatchingWindow(), field_, points, centre, velocity_information, kModel);
   if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
@@ -196,7 +202,7 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // The prior moves with the start: the constant-velocity guess is no better than the
     // lattice pose the scan prefers. A pose far from both predictions must explain the scan
     // well.
-    MatchResult refined = matcher_.Refine(*window_, field_, points, start.T_odom_base,
+    MatchResult refined = matcher_.Refine(*MatchingWindow(), field_, points, start.T_odom_base,
                                           start.T_odom_base, velocity_information, kModel);
     if (refined.ok && refined.score >= good &&
         (!best.ok || refined.score > best.score + kScoreMargin)) {
@@ -223,8 +229,14 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   const bool first = window_ == nullptr;
   MotionPrediction prediction;
   if (first) {
+    const bool point_to_line = options_.matcher.residual == "point_to_line";
+    const bool separate = options_.local_map.MatchingSize() > options_.local_map.size;
     window_ = std::make_unique<RollingWindow>(options_.local_map, pose.translation(),
-                                              options_.matcher.residual == "point_to_line");
+                                              point_to_line && !separate);
+    if (separate) {
+      matching_window_ = std::make_unique<RollingWindow>(options_.local_map.MatchingWindow(),
+                                                         pose.translation(), point_to_line);
+    }
     step.status = FrameStatus::kFirst;
     motion_check_.Reset(frame.corrected_time, pose, pose);
   } else {
@@ -248,23 +260,29 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
     } else if (static_cast<int>(points.size()) < options_.matcher.min_points) {
       step.status = FrameStatus::kFallbackFewPoints;
       ++stats_.fallback_few_points;
-    } else if (window_->NumObstacles() < options_.matcher.min_correspondences) {
+    } else if (MatchingWindow()->NumObstacles() < options_.matcher.min_correspondences) {
       step.status = FrameStatus::kFallbackEmptyMap;
       ++stats_.fallback_empty_map;
     } else {
       start = Clock::now();
-      field_.Update(*window_);
+      field_.Update(*MatchingWindow());
+      // The key-map window's changes have no consumer when it is not the one matched against.
       window_->ClearChanges();
+      if (matching_window_ != nullptr) {
+        matching_window_->ClearChanges();
+      }
       stats_.seconds_field += SecondsSince(start);
       start = Clock::now();
+      bool velocity_preferred = false;
       if (trusted) {
-        step.match = matcher_.Match(*window_, field_, points, predicted, prior_information);
+        step.match =
+            matcher_.Match(*MatchingWindow(), field_, points, predicted, prior_information);
       } else {
         const Eigen::Matrix3d velocity_information = PriorInformation(
             DefaultPriorSigmas(Between(last_estimate_, prediction.constant_velocity)),
             prediction.constant_velocity, false);
         step.match = MatchWithoutTrustedOdometry(points, prediction, velocity_information,
-                                                 prior_information, &step);
+                                                 prior_information, &step, &velocity_preferred);
       }
       stats_.seconds_match += SecondsSince(start);
       stats_.searches += step.match.searched ? 1 : 0;
@@ -278,9 +296,11 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       const Pose2& found = step.match.T_odom_base;
       const bool near_prediction = !missing && within(predicted, found, options_.max_correction_xy,
                                                       options_.max_correction_theta);
-      // Against a doubtful odometry, only a match that explains the scan well may leave the
-      // odometry's limits; a poor one (a hall the scan barely constrains) keeps the odometry.
-      const bool evidence = missing || step.match.score >= options_.matcher.good_score;
+      // Against a doubtful odometry, only a match that explains the scan well, or clearly better
+      // than the odometry's prediction does, may leave the odometry's limits; a poor one (a hall
+      // the scan barely constrains) keeps the odometry.
+      const bool evidence =
+          missing || velocity_preferred || step.match.score >= options_.matcher.good_score;
       const bool near_velocity =
           !trusted && evidence &&
           within(prediction.constant_velocity, found,
@@ -325,8 +345,14 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
 
   start = Clock::now();
   window_->Recentre(pose.translation());
+  if (matching_window_ != nullptr) {
+    matching_window_->Recentre(pose.translation());
+  }
   if (first || ShouldInsert(frame, pose)) {
     window_->InsertScan(pose, points);
+    if (matching_window_ != nullptr) {
+      matching_window_->InsertScan(pose, points);
+    }
     last_insert_pose_ = pose;
     last_insert_time_ = frame.corrected_time;
     step.inserted = true;

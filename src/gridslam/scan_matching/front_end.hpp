@@ -91,8 +91,14 @@ class FrontEnd {
   std::optional<keymap::KeyMap> Finish();
 
   [[nodiscard]] const FrontEndStats& Stats() const { return stats_; }
-  /// The local map (null before the first frame).
+  /// The local map the key maps are cut from (null before the first frame).
   [[nodiscard]] const RollingWindow* Window() const { return window_.get(); }
+  /// The local map scans are matched against: a larger window than Window() when
+  /// local_map.MatchingSize() exceeds local_map.size, Window() itself otherwise (null before the
+  /// first frame).
+  [[nodiscard]] const RollingWindow* MatchingWindow() const {
+    return matching_window_ != nullptr ? matching_window_.get() : window_.get();
+  }
   [[nodiscard]] const FrontEndOptions& Options() const { return options_; }
 
  private:
@@ -110,18 +116,20 @@ class FrontEnd {
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
   /// Matches a frame whose odometry is doubtful or missing. Doubtful: from the odometry's
   /// prediction and from the constant velocity; the odometry keeps the frame unless the scan
-  /// clearly prefers the other pose. Missing: from the constant velocity, and from the wide
-  /// search's maxima when that explains the scan poorly.
+  /// clearly prefers the other pose (`velocity_preferred`). Missing: from the constant velocity,
+  /// and from the wide search's maxima when that explains the scan poorly.
   [[nodiscard]] MatchResult MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                         const MotionPrediction& prediction,
                                                         const Eigen::Matrix3d& velocity_information,
                                                         const Eigen::Matrix3d& odometry_information,
-                                                        FrontEndStep* step);
+                                                        FrontEndStep* step,
+                                                        bool* velocity_preferred);
 
   FrontEndOptions options_;
   ScanMatcher matcher_;
-  std::unique_ptr<RollingWindow> window_;
-  MatchingField field_;
+  std::unique_ptr<RollingWindow> window_;           ///< Key maps are its centre.
+  std::unique_ptr<RollingWindow> matching_window_;  ///< Null: window_ is matched against.
+  MatchingField field_;                             ///< Of MatchingWindow().
   keymap::KeyMapBuilder keymaps_;
   OdometryNoiseEstimate odometry_noise_;
   MotionCheck motion_check_;

@@ -3,49 +3,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gridslam/grid/cell_shift.hpp"
+
 namespace gridslam::scan_matching {
 namespace {
 
-// Moves a row-major field by (di, dj) cells (new (i, j) = old (i + di, j + dj)); labels are
-// re-indexed and dropped (with their distance) when their obstacle left the grid.
+// Moves a row-major field by (di, dj) cells in place (new (i, j) = old (i + di, j + dj)); labels
+// are re-indexed by the constant offset of the shift. A label whose obstacle left the grid then
+// names a wrong cell, but such a cell lies within the truncation radius of the edge the obstacles
+// left by, which Update() recomputes right after, as it does the cells that entered.
 void ShiftField(distance_transform::SquaredDistanceField& field, std::vector<float>& distance,
                 float max_distance, int di, int dj) {
   const int w = field.width;
   const int h = field.height;
-  std::vector<float> squared(field.squared.size(), distance_transform::kInfinity);
-  std::vector<std::int32_t> nearest(field.nearest.size(), -1);
-  std::vector<float> shifted_distance(distance.size(), max_distance);
-  for (int j = 0; j < h; ++j) {
-    const int sj = j + dj;
-    if (sj < 0 || sj >= h) {
-      continue;
-    }
-    for (int i = 0; i < w; ++i) {
-      const int si = i + di;
-      if (si < 0 || si >= w) {
-        continue;
-      }
-      const std::size_t src =
-          static_cast<std::size_t>(sj) * static_cast<std::size_t>(w) + static_cast<std::size_t>(si);
-      const std::int32_t label = field.nearest[src];
-      if (label < 0) {
-        continue;
-      }
-      const int li = label % w - di;
-      const int lj = label / w - dj;
-      if (li < 0 || lj < 0 || li >= w || lj >= h) {
-        continue;
-      }
-      const std::size_t dst =
-          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
-      squared[dst] = field.squared[src];
-      nearest[dst] = lj * w + li;
-      shifted_distance[dst] = distance[src];
-    }
+  ShiftCellsInPlace(field.squared, w, h, di, dj, distance_transform::kInfinity);
+  ShiftCellsInPlace(field.nearest, w, h, di, dj, std::int32_t{-1});
+  ShiftCellsInPlace(distance, w, h, di, dj, max_distance);
+  const std::int32_t offset = dj * w + di;
+  for (std::int32_t& label : field.nearest) {
+    label = label < 0 ? label : label - offset;
   }
-  field.squared.swap(squared);
-  field.nearest.swap(nearest);
-  distance.swap(shifted_distance);
 }
 
 }  // namespace
