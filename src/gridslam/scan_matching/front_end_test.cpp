@@ -14,12 +14,10 @@ namespace {
 using internal::SimulateScan;
 using internal::TestWorld;
 
-// True robot poses: turn in place towards each waypoint, then drive to it (4 cm, <= 0.08 rad per
-// frame).
-std::vector<Pose2> DriveThroughTheWorld() {
-  const std::vector<Eigen::Vector2d> waypoints = {{8.5, 1.5}, {8.8, 3.7}, {14.5, 3.8}, {9.0, 3.7},
-                                                  {5.0, 5.5}, {1.5, 3.0}, {2.0, 1.2},  {6.0, 1.0}};
-  std::vector<Pose2> poses = {Pose2(2.0, 1.0, 0.0)};
+// True robot poses from `start`: turn in place towards each waypoint, then drive to it (4 cm,
+// <= 0.08 rad per frame).
+std::vector<Pose2> Drive(const Pose2& start, const std::vector<Eigen::Vector2d>& waypoints) {
+  std::vector<Pose2> poses = {start};
   for (const Eigen::Vector2d& target : waypoints) {
     while (true) {
       const Pose2& p = poses.back();
@@ -38,9 +36,21 @@ std::vector<Pose2> DriveThroughTheWorld() {
   return poses;
 }
 
+std::vector<Pose2> DriveThroughTheWorld() {
+  return Drive(Pose2(2.0, 1.0, 0.0), {{8.5, 1.5},
+                                      {8.8, 3.7},
+                                      {14.5, 3.8},
+                                      {9.0, 3.7},
+                                      {5.0, 5.5},
+                                      {1.5, 3.0},
+                                      {2.0, 1.2},
+                                      {6.0, 1.0}});
+}
+
 // Frames with a mounted laser (0.1 m ahead) and odometry that overestimates turns by 5 % and
 // distances by 2 %, plus noise.
-std::vector<Frame> MakeFrames(const std::vector<Pose2>& truth) {
+std::vector<Frame> MakeFrames(const std::vector<Pose2>& truth,
+                              const std::vector<internal::Segment>& world = TestWorld()) {
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, 1.0);
   const Pose2 T_base_laser(0.1, 0.0, 0.0);
@@ -57,8 +67,8 @@ std::vector<Frame> MakeFrames(const std::vector<Pose2>& truth) {
     frame.corrected_time = frame.time;
     frame.T_odom_base = odometry;
     frame.T_base_laser = T_base_laser;
-    frame.scan = SimulateScan(TestWorld(), truth[k] * T_base_laser, 181, 30.0, 0.01,
-                              static_cast<unsigned>(k));
+    frame.scan =
+        SimulateScan(world, truth[k] * T_base_laser, 181, 30.0, 0.01, static_cast<unsigned>(k));
     frames.push_back(std::move(frame));
   }
   return frames;
@@ -133,6 +143,54 @@ TEST(FrontEnd, BeatsOdometryAndHandsOutEveryScanInOneKeyMap) {
     }
   }
   EXPECT_EQ(index, frames.size());
+}
+
+// A hall of 44 m x 36 m with two pillars: from the drive in its middle every wall and pillar is
+// 13 m or more away, beyond the key-map window's half side (12.5 m).
+std::vector<internal::Segment> FarWalledHall() {
+  std::vector<internal::Segment> w;
+  auto box = [&w](double x0, double y0, double x1, double y1) {
+    w.push_back({{x0, y0}, {x1, y0}});
+    w.push_back({{x1, y0}, {x1, y1}});
+    w.push_back({{x1, y1}, {x0, y1}});
+    w.push_back({{x0, y1}, {x0, y0}});
+  };
+  box(-18.013, -15.979, 26.013, 20.021);
+  box(-10.987, 14.021, -9.987, 15.021);
+  box(16.013, -11.979, 17.013, -10.979);
+  return w;
+}
+
+TEST(FrontEnd, AHallWhoseWallsAreAllFarAwayIsStillMatched) {
+  const std::vector<Pose2> truth =
+      Drive(Pose2(0.0, 0.0, 0.0), {{6.0, 0.0}, {6.0, 4.0}, {0.0, 4.0}, {0.0, 0.5}});
+  ASSERT_GT(truth.size(), 400U);
+  const std::vector<Frame> frames = MakeFrames(truth, FarWalledHall());
+  auto run = [&](const FrontEndOptions& options) {
+    FrontEnd front_end(options);
+    std::vector<Pose2> estimate;
+    for (const Frame& frame : frames) {
+      estimate.push_back(front_end.AddFrame(frame).T_odom_base);
+    }
+    return std::make_pair(front_end.Stats(), estimate);
+  };
+  // The default matching window holds every return inserted: each scan is matched, and the drive
+  // comes out better than its odometry.
+  const auto [stats, estimate] = run(FrontEndOptions{});
+  EXPECT_EQ(stats.matched, stats.frames - 1);
+  std::vector<Pose2> odometry;
+  for (const Frame& frame : frames) {
+    odometry.push_back(frame.T_odom_base);
+  }
+  const auto [odometry_xy, odometry_theta] = RelativeError(truth, odometry, 20);
+  const auto [estimate_xy, estimate_theta] = RelativeError(truth, estimate, 20);
+  EXPECT_LT(estimate_xy, 0.5 * odometry_xy);
+  EXPECT_LT(estimate_theta, 0.2 * odometry_theta);
+  // Matched against the key-map window alone, the scans find nothing to match.
+  FrontEndOptions small;
+  small.local_map.matching_size = small.local_map.size;
+  const auto [small_stats, small_estimate] = run(small);
+  EXPECT_EQ(small_stats.matched, 0);
 }
 
 // The drive's end pose relative to its start, estimated against the truth.
