@@ -31,6 +31,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"missing", s.odometry_missing},
         {"wide_searches", s.wide_searches}}},
       {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
+      {"far_window_matches", s.far_matches},
       {"chi2_final", s.chi2_final},
       {"time_s",
        {{"front_end", s.seconds_front_end},

@@ -56,6 +56,7 @@ nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
         {"total", s.fallback_few_points + s.fallback_empty_map + s.fallback_rejected}}},
       {"correlative_searches", s.searches},
       {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
+      {"far_window_matches", s.far_matches},
       {"odometry",
        {{"doubtful", s.odometry_doubtful},
         {"missing", s.odometry_missing},

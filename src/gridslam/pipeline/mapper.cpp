@@ -60,6 +60,7 @@ MapperStats Mapper::Impl::MergedStats() const {
   merged.wide_searches = front_stats.wide_searches;
   merged.degenerate_one = front_stats.degenerate_one;
   merged.degenerate_both = front_stats.degenerate_both;
+  merged.far_matches = front_stats.far_matches;
   merged.seconds_front_end = front_stats.seconds_front_end;
   return merged;
 }
@@ -80,6 +81,7 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   if (step.status == scan_matching::FrameStatus::kMatched) {
     fs.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
     fs.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
+    fs.far_matches += step.match.far_window ? 1 : 0;
   }
   if (state.last_pose.has_value()) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();

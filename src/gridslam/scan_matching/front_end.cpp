@@ -102,6 +102,7 @@ FrontEnd::FrontEnd(const FrontEndOptions& options)
     : options_(options),
       matcher_(options.matcher),
       field_(options.matcher.max_correspondence_distance),
+      matching_field_(options.matcher.max_correspondence_distance),
       keymaps_(options.keymap),
       odometry_noise_(options.adaptive_window, options.adaptive_min_scale),
       motion_check_(options.odometry_check) {
@@ -146,6 +147,43 @@ bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
          std::abs(ToSeconds(frame.corrected_time - last_insert_time_)) >= options_.insert_period;
 }
 
+MatchResult FrontEnd::MatchInWindows(const ScanPoints& points, const Pose2& start,
+                                     const Pose2& prior, const Eigen::Matrix3d& information,
+                                     PriorKind kind, bool refine_only, WindowPolicy policy) {
+  auto match = [&](const RollingWindow& window, const MatchingField& field) {
+    return refine_only ? matcher_.Refine(window, field, points, start, prior, information, kind)
+                       : matcher_.Match(window, field, points, prior, information, kind);
+  };
+  auto match_far = [&]() {
+    // The matching window's field is brought up to date only when a match needs it (it follows
+    // the window's changes since the last time, or is rebuilt).
+    const auto start_time = Clock::now();
+    matching_field_.Update(*matching_window_);
+    matching_window_->ClearChanges();
+    stats_.seconds_field += SecondsSince(start_time);
+    MatchResult far = match(*matching_window_, matching_field_);
+    far.far_window = true;
+    return far;
+  };
+  if (matching_window_ == nullptr) {
+    return match(*window_, field_);
+  }
+  if (policy == WindowPolicy::kMatchingWindow) {
+    return match_far();
+  }
+  MatchResult near = match(*window_, field_);
+  const int near_degenerate = near.degeneracy.degenerate_directions;
+  if (near.ok && near_degenerate == 0) {
+    return near;
+  }
+  // The key-map window failed or left a direction to the prior: the returns beyond it may hold
+  // what it cannot.
+  MatchResult far = match_far();
+  const bool better =
+      far.ok && (!near.ok || far.degeneracy.degenerate_directions < near_degenerate);
+  return better ? far : near;
+}
+
 MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
                                                   const MotionPrediction& prediction,
                                                   const Eigen::Matrix3d& velocity_information,
@@ -159,10 +197,11 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // unless the scan clearly prefers another pose. The constant velocity overrules it only
     // when it explains the scan well, clearly better, and at another pose; a failed or poor
     // match is no evidence against the odometry.
-    const MatchResult from_odometry = matcher_.Match(*MatchingWindow(), field_, points,
-                                                     prediction.odometry, odometry_information);
-    const MatchResult from_velocity =
-        matcher_.Match(*MatchingWindow(), field_, points, centre, velocity_information, kModel);
+    const MatchResult from_odometry =
+        MatchInWindows(points, prediction.odometry, prediction.odometry, odometry_information,
+                       PriorKind::kMeasured, false, WindowPolicy::kMatchingWindow);
+    const MatchResult from_velocity = MatchInWindows(points, centre, centre, velocity_information,
+                                                     kModel, false, WindowPolicy::kMatchingWindow);
     const Pose2 difference = Between(from_velocity.T_odom_base, from_odometry.T_odom_base);
     const bool same = difference.translation().norm() < kSamePoseXy &&
                       std::abs(difference.theta()) < kSamePoseTheta;
@@ -179,8 +218,8 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // halls the scan barely constrains (fr-clinic).
     return overrule ? from_velocity : from_odometry;
   }
-  MatchResult best =
-      matcher_.Match(*MatchingWindow(), field_, points, centre, velocity_information, kModel);
+  MatchResult best = MatchInWindows(points, centre, centre, velocity_information, kModel, false,
+                                    WindowPolicy::kNearFirst);
   if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
@@ -202,8 +241,9 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // The prior moves with the start: the constant-velocity guess is no better than the
     // lattice pose the scan prefers. A pose far from both predictions must explain the scan
     // well.
-    MatchResult refined = matcher_.Refine(*MatchingWindow(), field_, points, start.T_odom_base,
-                                          start.T_odom_base, velocity_information, kModel);
+    MatchResult refined =
+        MatchInWindows(points, start.T_odom_base, start.T_odom_base, velocity_information, kModel,
+                       true, WindowPolicy::kNearFirst);
     if (refined.ok && refined.score >= good &&
         (!best.ok || refined.score > best.score + kScoreMargin)) {
       refined.searched = true;
@@ -265,18 +305,14 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       ++stats_.fallback_empty_map;
     } else {
       start = Clock::now();
-      field_.Update(*MatchingWindow());
-      // The key-map window's changes have no consumer when it is not the one matched against.
-      window_->ClearChanges();
-      if (matching_window_ != nullptr) {
-        matching_window_->ClearChanges();
-      }
+      field_.Update(*window_);
+      window_->ClearChanges();  // the matching window's field follows it only when needed
       stats_.seconds_field += SecondsSince(start);
       start = Clock::now();
       bool velocity_preferred = false;
       if (trusted) {
-        step.match =
-            matcher_.Match(*MatchingWindow(), field_, points, predicted, prior_information);
+        step.match = MatchInWindows(points, predicted, predicted, prior_information,
+                                    PriorKind::kMeasured, false, WindowPolicy::kMatchingWindow);
       } else {
         const Eigen::Matrix3d velocity_information = PriorInformation(
             DefaultPriorSigmas(Between(last_estimate_, prediction.constant_velocity)),
@@ -317,6 +353,7 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         ++stats_.matched;
         stats_.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
         stats_.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
+        stats_.far_matches += step.match.far_window ? 1 : 0;
         // A doubtful increment the scan did not overrule was matched with the odometry's prior:
         // its correction is a sample of the odometry's noise like any other.
         if (trusted || (!missing && !step.odometry_overruled)) {

@@ -35,6 +35,8 @@ struct MatchResult {
   bool converged = false;   ///< The last stage converged before max_iterations.
   bool searched = false;    ///< The correlative search ran.
   bool ok = false;          ///< Enough correspondences; otherwise the pose is the prior.
+  /// Matched against the front end's larger matching window (set by FrontEnd, not the matcher).
+  bool far_window = false;
   /// The translation directions the scan left to the prior at the last iteration (degeneracy.hpp).
   DegeneracyResult degeneracy;
 };
