@@ -338,7 +338,8 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
   const auto checked = Clock::now();
   auto quality = RunSelfCheck(output.value()->path(), result, quality_scans,
-                              context.options.quality, context.options.fusion);
+                              context.options.quality, context.options.fusion,
+                              context.options.compute.Threads());
   report["time_s"]["self_check"] = std::chrono::duration<double>(Clock::now() - checked).count();
   report["threads"] = context.options.compute.Threads();
   if (!quality.ok()) {

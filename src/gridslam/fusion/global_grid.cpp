@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -70,11 +71,10 @@ struct PreparedScans {
   Eigen::Vector2d hi = -lo;
 };
 
-PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& options) {
-  // Select the scans to insert and their points in the map frame.
-  PreparedScans prepared;
-  Eigen::Vector2d& lo = prepared.lo;
-  Eigen::Vector2d& hi = prepared.hi;
+PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                      int threads = 1) {
+  // Select the scans to insert, then their points in the map frame (`threads` at once).
+  std::vector<const PosedScan*> selected;
   const Pose2* last = nullptr;
   for (const PosedScan& s : scans) {
     if (s.scan == nullptr) {
@@ -86,21 +86,47 @@ PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& 
       continue;
     }
     last = &s.T_map_base;
-    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
-    PreparedScans::Scan p;
-    p.origin = s.T_map_base * points.origin;
-    p.points.reserve(points.points.size());
-    const PointTransform to_map(s.T_map_base);
-    for (const auto& q : points.points) {
-      p.points.push_back(to_map(q));
+    selected.push_back(&s);
+  }
+  PreparedScans prepared;
+  prepared.scans.resize(selected.size());
+  const auto prepare = [&](std::size_t begin, std::size_t end, Eigen::Vector2d& lo,
+                           Eigen::Vector2d& hi) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const PosedScan& s = *selected[k];
+      const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+      PreparedScans::Scan& p = prepared.scans[k];
+      p.origin = s.T_map_base * points.origin;
+      p.points.reserve(points.points.size());
+      const PointTransform to_map(s.T_map_base);
+      for (const auto& q : points.points) {
+        p.points.push_back(to_map(q));
+      }
+      lo = lo.cwiseMin(p.origin);
+      hi = hi.cwiseMax(p.origin);
+      for (const auto& q : p.points) {
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
     }
-    lo = lo.cwiseMin(p.origin);
-    hi = hi.cwiseMax(p.origin);
-    for (const auto& q : p.points) {
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-    prepared.scans.push_back(std::move(p));
+  };
+  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
+                                                    std::max<std::size_t>(1, selected.size()));
+  std::vector<Eigen::Vector2d> lo(parts, prepared.lo);
+  std::vector<Eigen::Vector2d> hi(parts, prepared.hi);
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < parts; ++t) {
+    workers.emplace_back([&, t] {
+      prepare(selected.size() * t / parts, selected.size() * (t + 1) / parts, lo[t], hi[t]);
+    });
+  }
+  prepare(0, selected.size() / parts, lo[0], hi[0]);
+  for (std::thread& w : workers) {
+    w.join();
+  }
+  for (std::size_t t = 0; t < parts; ++t) {  // min and max: the same in any order
+    prepared.lo = prepared.lo.cwiseMin(lo[t]);
+    prepared.hi = prepared.hi.cwiseMax(hi[t]);
   }
   return prepared;
 }
@@ -140,9 +166,74 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
   return grid;
 }
 
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
-                                const FusionOptions& options) {
-  const PreparedScans prepared = Prepare(scans, options);
+namespace {
+
+/// Inserts the prepared scans into the rows [j0, j1) of `grid` only, in the order FuseScans
+/// inserts them (the same updates of every cell in the same order: the same values). The rows
+/// are whole tile rows, so that bands of rows inserted at once never share a tile.
+void InsertBand(const PreparedScans& prepared, const FusionOptions& options, int j0, int j1,
+                TiledGrid<float>& grid) {
+  const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
+  const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
+  const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
+  const MapLimits& limits = grid.Limits();
+  constexpr int kBits = TiledGrid<float>::kTileBits;
+  int tile_i = -1;
+  int tile_j = -1;
+  float* tile = nullptr;
+  const auto cell = [&](int i, int j) -> float& {
+    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
+      tile_i = i >> kBits;
+      tile_j = j >> kBits;
+      tile = grid.MutableTile(tile_i, tile_j);
+    }
+    return tile[TiledGrid<float>::InTile(i, j)];
+  };
+  for (const PreparedScans::Scan& p : prepared.scans) {
+    const Eigen::Array2i from = limits.CellIndex(p.origin);
+    for (const auto& q : p.points) {
+      const Eigen::Array2i to = limits.CellIndex(q);
+      if (std::max(from.y(), to.y()) < j0 || std::min(from.y(), to.y()) >= j1) {
+        continue;  // the ray stays out of the band
+      }
+      // TraceLine(from, to, false, ...) restricted to the band: the same cells in the same order.
+      int x = from.x();
+      int y = from.y();
+      const int dx = std::abs(to.x() - x);
+      const int dy = -std::abs(to.y() - y);
+      const int sx = x < to.x() ? 1 : -1;
+      const int sy = y < to.y() ? 1 : -1;
+      int err = dx + dy;
+      while (x != to.x() || y != to.y()) {
+        if (y >= j0 && y < j1) {
+          float& v = cell(x, y);
+          v = std::max(-clamp, v + miss);
+        } else if ((sy > 0 && y >= j1) || (sy < 0 && y < j0)) {
+          break;  // past the band, and moving away
+        }
+        const int e2 = 2 * err;
+        if (e2 >= dy) {
+          err += dy;
+          x += sx;
+        }
+        if (e2 <= dx) {
+          err += dx;
+          y += sy;
+        }
+      }
+      if (to.y() >= j0 && to.y() < j1) {
+        float& v = cell(to.x(), to.y());
+        v = std::min(clamp, v + hit);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads) {
+  const PreparedScans prepared = Prepare(scans, options, threads);
   if (prepared.scans.empty()) {
     return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
                             kUnknownLogOdds);
@@ -150,19 +241,44 @@ TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
   TiledGrid<float> grid(
       BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
       kUnknownLogOdds);
-  // Consecutive cells of a ray mostly share a tile: keep the last one at hand.
-  constexpr int kBits = TiledGrid<float>::kTileBits;
-  int tile_i = -1;
-  int tile_j = -1;
-  float* tile = nullptr;
-  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& {
-    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
-      tile_i = i >> kBits;
-      tile_j = j >> kBits;
-      tile = grid.MutableTile(tile_i, tile_j);
+  const MapLimits& limits = grid.Limits();
+  const int bands = std::clamp(threads, 1, std::max(1, grid.TilesY()));
+  if (bands == 1) {
+    InsertBand(prepared, options, 0, limits.Height(), grid);
+    return grid;
+  }
+  // Bands of whole tile rows holding about as many returns each (a ray is traced by every band
+  // it crosses; most rays are short and stay in one).
+  std::vector<long> per_tile_row(static_cast<std::size_t>(grid.TilesY()), 0);
+  long returns = 0;
+  for (const PreparedScans::Scan& p : prepared.scans) {
+    for (const auto& q : p.points) {
+      ++per_tile_row[static_cast<std::size_t>(limits.CellIndex(q).y() >>
+                                              TiledGrid<float>::kTileBits)];
+      ++returns;
     }
-    return tile[TiledGrid<float>::InTile(i, j)];
-  });
+  }
+  std::vector<int> edges = {0};
+  long seen = 0;
+  for (int t = 0; t < grid.TilesY() && static_cast<int>(edges.size()) < bands; ++t) {
+    seen += per_tile_row[static_cast<std::size_t>(t)];
+    if (seen * bands >= returns * static_cast<long>(edges.size())) {
+      edges.push_back((t + 1) * TiledGrid<float>::kTileSize);
+    }
+  }
+  edges.push_back(limits.Height());
+  std::vector<std::thread> workers;
+  for (std::size_t b = 1; b + 1 < edges.size(); ++b) {
+    const int j0 = std::min(edges[b], limits.Height());
+    const int j1 = std::min(edges[b + 1], limits.Height());
+    if (j0 < j1) {
+      workers.emplace_back([&, j0, j1] { InsertBand(prepared, options, j0, j1, grid); });
+    }
+  }
+  InsertBand(prepared, options, 0, std::min(edges[1], limits.Height()), grid);
+  for (std::thread& w : workers) {
+    w.join();
+  }
   return grid;
 }
 

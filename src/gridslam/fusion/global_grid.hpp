@@ -62,9 +62,10 @@ constexpr long kMaxFusedCells = 250'000'000L;
 /// std::length_error if the grid would exceed kMaxFusedCells.
 Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options);
 /// FuseScans into a tiled grid (the same limits and cells; tiles no scan touched are not
-/// allocated): what the mapper's final fusion uses.
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
-                                const FusionOptions& options);
+/// allocated): what the mapper's final fusion uses. `threads` > 1 inserts bands of rows at once,
+/// each band's cells updated in FuseScans' order: the same values for any number of threads.
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads = 1);
 
 /// A key map at its optimized pose (borrowed).
 struct PosedKeyMap {

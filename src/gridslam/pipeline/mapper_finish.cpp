@@ -110,7 +110,8 @@ MapperResult Mapper::Impl::Finish() {
               {result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
         }
       }
-      result.maps.push_back(fusion::FuseScansTiled(posed, options.fusion));
+      result.maps.push_back(
+          fusion::FuseScansTiled(posed, options.fusion, options.compute.Threads()));
     }
   }
   stats.seconds_fusion += SecondsSince(start);
