@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -13,31 +14,6 @@ namespace {
 
 // Beyond this many listed changes per update the consumer rebuilds everything anyway.
 constexpr std::size_t kMaxListedChanges = 1U << 16;
-
-// Returns `grid` moved by (di, dj) cells: new (i, j) = old (i + di, j + dj); the origin moves by
-// (di, dj) cells, entering cells get `fill`.
-template <typename T>
-Grid2D<T> Shifted(const Grid2D<T>& grid, int di, int dj, const T& fill) {
-  const MapLimits& old = grid.Limits();
-  const MapLimits limits(old.Resolution(),
-                         old.Origin() + Eigen::Vector2d(di, dj) * old.Resolution(), old.Width(),
-                         old.Height());
-  Grid2D<T> out(limits, fill);
-  const int w = old.Width();
-  const int i0 = std::max(0, -di);
-  const int i1 = std::min(w, w - di);
-  if (i0 >= i1) {
-    return out;
-  }
-  for (int j = 0; j < old.Height(); ++j) {
-    const int src_j = j + dj;
-    if (src_j < 0 || src_j >= old.Height()) {
-      continue;
-    }
-    std::copy(&grid(i0 + di, src_j), &grid(i0 + di, src_j) + (i1 - i0), &out(i0, j));
-  }
-  return out;
-}
 
 // Moves a row-major w x h array in place by (di, dj) cells (new (i, j) = old (i + di, j + dj));
 // entering cells get `fill`. T must be trivially copyable.
@@ -56,9 +32,15 @@ void ShiftInPlace(std::vector<T>& cells, int w, int h, int di, int dj, const T& 
       return;
     }
     const T* src = cells.data() + static_cast<std::size_t>(src_j) * uw + (i0 + di);
-    std::memmove(static_cast<void*>(row + i0), static_cast<const void*>(src), count * sizeof(T));
-    std::fill(row, row + i0, fill);
-    std::fill(row + i0 + count, row + uw, fill);
+    const auto before = static_cast<std::size_t>(i0);
+    std::memmove(static_cast<void*>(row + before), static_cast<const void*>(src),
+                 count * sizeof(T));
+    for (std::size_t i = 0; i < before; ++i) {
+      row[i] = fill;
+    }
+    for (std::size_t i = before + count; i < uw; ++i) {
+      row[i] = fill;
+    }
   };
   if (dj >= 0) {  // sources lie at or after their destinations: go forwards
     for (int j = 0; j < h; ++j) {
@@ -69,6 +51,19 @@ void ShiftInPlace(std::vector<T>& cells, int w, int h, int di, int dj, const T& 
       move_row(j);
     }
   }
+}
+
+// `grid` moved by (di, dj) cells: new (i, j) = old (i + di, j + dj); the origin moves by (di, dj)
+// cells, entering cells get `fill`. In place: the cells are moved, not copied into a new grid.
+template <typename T>
+void Shift(Grid2D<T>& grid, int di, int dj, const T& fill) {
+  const MapLimits& old = grid.Limits();
+  const MapLimits limits(old.Resolution(),
+                         old.Origin() + Eigen::Vector2d(di, dj) * old.Resolution(), old.Width(),
+                         old.Height());
+  std::vector<T> cells = std::move(grid.Cells());
+  ShiftInPlace(cells, old.Width(), old.Height(), di, dj, fill);
+  grid = Grid2D<T>(limits, std::move(cells));
 }
 
 }  // namespace
@@ -119,8 +114,8 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   if ((shift == 0).all()) {
     return shift;
   }
-  log_odds_ = Shifted(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
-  obstacles_ = Shifted(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
+  Shift(log_odds_, shift.x(), shift.y(), kUnknownLogOdds);
+  Shift(obstacles_, shift.x(), shift.y(), std::uint8_t{0});
   if (track_surfaces_) {
     ShiftInPlace(surfaces_, Limits().Width(), Limits().Height(), shift.x(), shift.y(),
                  CellSurface{});
