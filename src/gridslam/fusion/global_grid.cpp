@@ -168,27 +168,20 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
 
 namespace {
 
-/// Inserts the prepared scans into the rows [j0, j1) of `grid` only, in the order FuseScans
-/// inserts them (the same updates of every cell in the same order: the same values). The rows
-/// are whole tile rows, so that bands of rows inserted at once never share a tile.
-void InsertBand(const PreparedScans& prepared, const FusionOptions& options, int j0, int j1,
-                TiledGrid<float>& grid) {
+/// Inserts the prepared scans into the rows [j0, j1) of the grid only, in the order FuseScans
+/// inserts them (the same updates of every cell in the same order: the same values); `cell(i, j)`
+/// returns the log-odds of a cell to update. Bands of rows inserted at once must not share
+/// storage (whole tile rows for a tiled grid).
+template <class Cell>
+void InsertBand(const PreparedScans& prepared, const MapLimits& limits,
+                const FusionOptions& options, int j0, int j1, Cell&& cell) {
+  if (j0 <= 0 && j1 >= limits.Height()) {
+    InsertPrepared(prepared, limits, options, cell);
+    return;
+  }
   const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
   const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
   const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
-  const MapLimits& limits = grid.Limits();
-  constexpr int kBits = TiledGrid<float>::kTileBits;
-  int tile_i = -1;
-  int tile_j = -1;
-  float* tile = nullptr;
-  const auto cell = [&](int i, int j) -> float& {
-    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
-      tile_i = i >> kBits;
-      tile_j = j >> kBits;
-      tile = grid.MutableTile(tile_i, tile_j);
-    }
-    return tile[TiledGrid<float>::InTile(i, j)];
-  };
   for (const PreparedScans::Scan& p : prepared.scans) {
     const Eigen::Array2i from = limits.CellIndex(p.origin);
     for (const auto& q : p.points) {
@@ -229,56 +222,107 @@ void InsertBand(const PreparedScans& prepared, const FusionOptions& options, int
   }
 }
 
-}  // namespace
-
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
-                                int threads) {
-  const PreparedScans prepared = Prepare(scans, options, threads);
-  if (prepared.scans.empty()) {
-    return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
-                            kUnknownLogOdds);
-  }
-  TiledGrid<float> grid(
-      BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
-      kUnknownLogOdds);
-  const MapLimits& limits = grid.Limits();
-  const int bands = std::clamp(threads, 1, std::max(1, grid.TilesY()));
-  if (bands == 1) {
-    InsertBand(prepared, options, 0, limits.Height(), grid);
-    return grid;
-  }
-  // Bands of whole tile rows holding about as many returns each (a ray is traced by every band
-  // it crosses; most rays are short and stay in one).
-  std::vector<long> per_tile_row(static_cast<std::size_t>(grid.TilesY()), 0);
+/// Row bands of about as many returns each, at multiples of `granule` rows; `bands` + 1 edges.
+std::vector<int> BandEdges(const PreparedScans& prepared, const MapLimits& limits, int bands,
+                           int granule) {
+  const int granules = (limits.Height() + granule - 1) / granule;
+  std::vector<long> per_granule(static_cast<std::size_t>(granules), 0);
   long returns = 0;
   for (const PreparedScans::Scan& p : prepared.scans) {
     for (const auto& q : p.points) {
-      ++per_tile_row[static_cast<std::size_t>(limits.CellIndex(q).y() >>
-                                              TiledGrid<float>::kTileBits)];
+      ++per_granule[static_cast<std::size_t>(limits.CellIndex(q).y() / granule)];
       ++returns;
     }
   }
   std::vector<int> edges = {0};
   long seen = 0;
-  for (int t = 0; t < grid.TilesY() && static_cast<int>(edges.size()) < bands; ++t) {
-    seen += per_tile_row[static_cast<std::size_t>(t)];
+  for (int g = 0; g < granules && static_cast<int>(edges.size()) < bands; ++g) {
+    seen += per_granule[static_cast<std::size_t>(g)];
     if (seen * bands >= returns * static_cast<long>(edges.size())) {
-      edges.push_back((t + 1) * TiledGrid<float>::kTileSize);
+      edges.push_back(std::min(limits.Height(), (g + 1) * granule));
     }
   }
   edges.push_back(limits.Height());
+  return edges;
+}
+
+/// Runs band(j0, j1) for the bands between consecutive `edges`, the first on this thread.
+template <class Band>
+void RunBands(const std::vector<int>& edges, Band&& band) {
   std::vector<std::thread> workers;
   for (std::size_t b = 1; b + 1 < edges.size(); ++b) {
-    const int j0 = std::min(edges[b], limits.Height());
-    const int j1 = std::min(edges[b + 1], limits.Height());
-    if (j0 < j1) {
-      workers.emplace_back([&, j0, j1] { InsertBand(prepared, options, j0, j1, grid); });
+    if (edges[b] < edges[b + 1]) {
+      workers.emplace_back([&, b] { band(edges[b], edges[b + 1]); });
     }
   }
-  InsertBand(prepared, options, 0, std::min(edges[1], limits.Height()), grid);
+  band(edges[0], edges[1]);
   for (std::thread& w : workers) {
     w.join();
   }
+}
+
+}  // namespace
+
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads, long dense_cells) {
+  const PreparedScans prepared = Prepare(scans, options, threads);
+  if (prepared.scans.empty()) {
+    return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
+                            kUnknownLogOdds);
+  }
+  const MapLimits limits =
+      BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin);
+  constexpr int kTile = TiledGrid<float>::kTileSize;
+  if (limits.NumCells() <= dense_cells) {
+    // Small enough to fuse densely (faster per cell), then keep the written tiles.
+    Grid2D<float> dense(limits, kUnknownLogOdds);
+    const int w = limits.Width();
+    float* cells = dense.data();
+    RunBands(BandEdges(prepared, limits, std::max(1, threads), 1), [&](int j0, int j1) {
+      InsertBand(prepared, limits, options, j0, j1, [&](int i, int j) -> float& {
+        return cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+                     static_cast<std::size_t>(i)];
+      });
+    });
+    TiledGrid<float> grid(limits, kUnknownLogOdds);
+    for (int tj = 0; tj < grid.TilesY(); ++tj) {
+      for (int ti = 0; ti < grid.TilesX(); ++ti) {
+        const int i0 = ti * kTile;
+        const int j0 = tj * kTile;
+        const int i1 = std::min(limits.Width(), i0 + kTile);
+        const int j1 = std::min(limits.Height(), j0 + kTile);
+        bool written = false;
+        for (int j = j0; j < j1 && !written; ++j) {
+          written = std::any_of(&dense(i0, j), &dense(i0, j) + (i1 - i0),
+                                [](float v) { return v != kUnknownLogOdds; });
+        }
+        if (written) {
+          float* tile = grid.MutableTile(ti, tj);
+          for (int j = j0; j < j1; ++j) {
+            std::copy(&dense(i0, j), &dense(i0, j) + (i1 - i0), tile + (j - j0) * kTile);
+          }
+        }
+      }
+    }
+    return grid;
+  }
+  TiledGrid<float> grid(limits, kUnknownLogOdds);
+  RunBands(BandEdges(prepared, limits, std::clamp(threads, 1, grid.TilesY()), kTile),
+           [&](int j0, int j1) {
+             // The tile of the last cell: consecutive cells of a ray mostly share one.
+             constexpr int kBits = TiledGrid<float>::kTileBits;
+             int tile_i = -1;
+             int tile_j = -1;
+             float* tile = nullptr;
+             InsertBand(prepared, limits, options, j0, j1, [&](int i, int j) -> float& {
+               if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
+                 tile_i = i >> kBits;
+                 tile_j = j >> kBits;
+                 tile = grid.MutableTile(tile_i, tile_j);
+               }
+               return tile[TiledGrid<float>::InTile(i, j)];
+             });
+           });
   return grid;
 }
 

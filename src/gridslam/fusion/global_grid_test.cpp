@@ -78,13 +78,15 @@ TEST(GlobalGrid, TiledFusionEqualsDenseFusionWithAnyNumberOfThreads) {
   options.min_motion = 0.0;
   options.min_rotation = 0.0;
   const Grid2D<float> dense = FuseScans(scans, options);
-  for (const int threads : {1, 2, 3, 7}) {
-    const Grid2D<float> tiled = FuseScansTiled(scans, options, threads).ToDense();
-    ASSERT_EQ(tiled.Width(), dense.Width());
-    ASSERT_EQ(tiled.Height(), dense.Height());
-    ASSERT_EQ(tiled.Limits().Origin(), dense.Limits().Origin());
-    EXPECT_EQ(std::memcmp(tiled.data(), dense.data(), dense.size() * sizeof(float)), 0)
-        << threads << " threads";
+  for (const long dense_cells : {kDenseFusionCells, 0L}) {  // dense first, or tiles only
+    for (const int threads : {1, 2, 3, 7}) {
+      const Grid2D<float> tiled = FuseScansTiled(scans, options, threads, dense_cells).ToDense();
+      ASSERT_EQ(tiled.Width(), dense.Width());
+      ASSERT_EQ(tiled.Height(), dense.Height());
+      ASSERT_EQ(tiled.Limits().Origin(), dense.Limits().Origin());
+      EXPECT_EQ(std::memcmp(tiled.data(), dense.data(), dense.size() * sizeof(float)), 0)
+          << threads << " threads, dense up to " << dense_cells << " cells";
+    }
   }
 }
 
