@@ -196,7 +196,8 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
             {"alignment", s.seconds_alignment},
             {"online_optimization", s.seconds_optimization},
             {"final_optimization", s.seconds_final},
-            {"fusion", s.seconds_fusion}}}};
+            {"fusion", s.seconds_fusion},
+            {"cpu_worker", s.cpu_seconds_worker}}}};
 }
 
 int RunMap(const MapArgs& args, AppContext& context) {
@@ -289,6 +290,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
     }
   }
   const auto mapped = Clock::now();
+  const double cpu_caller = ThreadCpuSeconds();
   pipeline::MapperResult result = mapper.Finish();
   mapper_holder.reset();
   ReleaseFreedMemory();
@@ -335,6 +337,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["robot_joins"] = joins;
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
+  report["time_s"]["cpu_caller"] = cpu_caller;
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
   const auto checked = Clock::now();
   auto quality = RunSelfCheck(output.value()->path(), result, quality_scans,

@@ -6,6 +6,7 @@
 
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/grid/log_odds.hpp"
+#include "gridslam/pipeline/key_map_worker.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -70,6 +71,9 @@ MapperResult Mapper::Impl::Finish() {
     }
   }
   Sync();
+  if (worker != nullptr) {
+    stats.cpu_seconds_worker = worker->CpuSeconds();
+  }
   now = front_now;
   graph.SetTime(now);
   FinalOptimization();
