@@ -126,45 +126,6 @@ class SnapshotWriter {
   std::vector<double> cpu_seconds_;
 };
 
-<<<<<<< HEAD
-=======
-nlohmann::json StatsJson(const pipeline::MapperStats& s) {
-  return {{"frames", s.frames},
-          {"key_maps", s.key_maps},
-          {"featureless_key_maps", s.featureless},
-          {"sequential_edges_aligned", s.sequential_aligned},
-          {"closures",
-           {{"proposed", s.candidates + s.appearance_candidates},
-            {"prior_candidates", s.candidates},
-            {"appearance_queries", s.appearance_queries},
-            {"appearance_candidates", s.appearance_candidates},
-            {"verified", s.verified},
-            {"found_by_prior_refinement", s.prior_refined},
-            {"prior_searches", s.prior_searches},
-            {"key_map_fields_recomputed", s.geometry_recomputed},
-            {"online_full_optimizations", s.online_full_optimizations},
-            {"accepted", s.accepted},
-            {"rejected_gate", s.rejected_gate},
-            {"rejected_alignment", s.candidates + s.appearance_candidates - s.verified},
-            {"pruned", s.pruned}}},
-          {"joins", s.joins},
-          {"odometry",
-           {{"doubtful", s.odometry_doubtful},
-            {"overruled", s.odometry_overruled},
-            {"missing", s.odometry_missing},
-            {"wide_searches", s.wide_searches}}},
-          {"chi2_final", s.chi2_final},
-          {"time_s",
-           {{"front_end", s.seconds_front_end},
-            {"description", s.seconds_description},
-            {"alignment", s.seconds_alignment},
-            {"online_optimization", s.seconds_optimization},
-            {"final_optimization", s.seconds_final},
-            {"fusion", s.seconds_fusion},
-            {"cpu_worker", s.cpu_seconds_worker}}}};
-}
-
->>>>>>> helper/speed
 int RunMap(const MapArgs& args, AppContext& context) {
   const auto start = Clock::now();
   const int num_robots = static_cast<int>(args.logs.size());
@@ -276,29 +237,9 @@ int RunMap(const MapArgs& args, AppContext& context) {
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
   report["time_s"]["cpu_caller"] = cpu_caller;
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
-<<<<<<< HEAD
   auto quality_summary = session.Write(output.value()->path(), result, report, "gridslam map");
   if (!quality_summary.ok()) {
     return ReportError(quality_summary.error());
-=======
-  const auto checked = Clock::now();
-  auto quality = RunSelfCheck(output.value()->path(), result, quality_scans,
-                              context.options.quality, context.options.fusion,
-                              context.options.compute.Threads());
-  report["time_s"]["self_check"] = std::chrono::duration<double>(Clock::now() - checked).count();
-  report["threads"] = context.options.compute.Threads();
-  if (!quality.ok()) {
-    return ReportError(quality.error());
-  }
-  report["quality"] = quality.value().report;
-  ReleaseFreedMemory();
-  const std::string config =
-      "# gridslam map: effective configuration\n" + io::OptionsToYaml(context.options);
-  if (const Status s = WriteMapOutputs(output.value()->path(), result, robots,
-                                       context.options.eval.trajectory_frame, config, report);
-      !s.ok()) {
-    return ReportError(s.error());
->>>>>>> helper/speed
   }
   if (const Status s = output.value()->Commit(); !s.ok()) {
     return ReportError(s.error());
