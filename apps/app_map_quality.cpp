@@ -39,7 +39,7 @@ void QualityScans::Add(int robot, long index, const Frame& frame) {
 Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::MapperResult& result,
                                     const QualityScans& scans,
                                     const quality::SelfCheckOptions& options,
-                                    const fusion::FusionOptions& fusion) {
+                                    const fusion::FusionOptions& fusion, int threads) {
   QualityOutcome outcome;
   if (!options.enabled) {
     outcome.report = {{"enabled", false}};
@@ -61,7 +61,8 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
         }
       }
     }
-    quality::SelfCheckResult check = quality::CheckMap(result.maps[c], posed, fusion, options);
+    quality::SelfCheckResult check =
+        quality::CheckMap(result.maps[c], posed, fusion, options, threads);
     total.Merge(check.stats);
     const std::string name =
         result.maps.size() == 1 ? "map_quality.png" : "map_quality_" + std::to_string(c) + ".png";

@@ -47,6 +47,6 @@ struct QualityOutcome {
 Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::MapperResult& result,
                                     const QualityScans& scans,
                                     const quality::SelfCheckOptions& options,
-                                    const fusion::FusionOptions& fusion);
+                                    const fusion::FusionOptions& fusion, int threads = 1);
 
 }  // namespace gridslam::app

@@ -39,7 +39,8 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"alignment", s.seconds_alignment},
         {"online_optimization", s.seconds_optimization},
         {"final_optimization", s.seconds_final},
-        {"fusion", s.seconds_fusion}}}};
+        {"fusion", s.seconds_fusion},
+        {"cpu_worker", s.cpu_seconds_worker}}}};
 }
 
 nlohmann::json MapReport(const pipeline::MapperResult& result,

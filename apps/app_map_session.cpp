@@ -49,7 +49,8 @@ nlohmann::json MapSession::Report(const pipeline::MapperResult& result) const {
 Result<std::string> MapSession::Write(const std::string& dir, const pipeline::MapperResult& result,
                                       nlohmann::json report, const std::string& producer) const {
   const auto checked = std::chrono::steady_clock::now();
-  auto quality = RunSelfCheck(dir, result, quality_scans_, options_.quality, options_.fusion);
+  auto quality = RunSelfCheck(dir, result, quality_scans_, options_.quality, options_.fusion,
+                              options_.compute.Threads());
   report["time_s"]["self_check"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
   report["threads"] = options_.compute.Threads();

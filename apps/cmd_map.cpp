@@ -209,6 +209,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
     }
   }
   const auto mapped = Clock::now();
+  const double cpu_caller = ThreadCpuSeconds();
   pipeline::MapperResult result = mapper.Finish();
   mapper_holder.reset();
   ReleaseFreedMemory();
@@ -234,6 +235,7 @@ int RunMap(const MapArgs& args, AppContext& context) {
   const double duration = session.Duration();
   report["time_s"]["total"] = seconds;
   report["time_s"]["mapping"] = std::chrono::duration<double>(mapped - start).count();
+  report["time_s"]["cpu_caller"] = cpu_caller;
   report["real_time_factor"] = seconds > 0.0 ? duration / seconds : 0.0;
   auto quality_summary = session.Write(output.value()->path(), result, report, "gridslam map");
   if (!quality_summary.ok()) {

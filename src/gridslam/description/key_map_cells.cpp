@@ -1,5 +1,6 @@
 #include "gridslam/description/key_map_cells.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -15,10 +16,18 @@ KeyMapCells::KeyMapCells(const Grid2D<float>& log_odds, float occupied_log_odds,
       obstacle_((log_odds.size() + 63) / 64, 0),
       observed_((log_odds.size() + 63) / 64, 0) {
   const float* l = log_odds.data();
-  for (std::size_t k = 0; k < log_odds.size(); ++k) {
-    obstacle_[k / 64] |= static_cast<std::uint64_t>(l[k] > occupied_log_odds ? 1U : 0U) << (k % 64);
-    observed_[k / 64] |= static_cast<std::uint64_t>(std::abs(l[k]) > observed_log_odds ? 1U : 0U)
-                         << (k % 64);
+  const std::size_t n = log_odds.size();
+  for (std::size_t w = 0; w * 64 < n; ++w) {
+    const std::size_t end = std::min<std::size_t>(64, n - w * 64);
+    const float* cells = l + w * 64;
+    std::uint64_t obstacle = 0;
+    std::uint64_t observed = 0;
+    for (std::size_t b = 0; b < end; ++b) {
+      obstacle |= static_cast<std::uint64_t>(cells[b] > occupied_log_odds) << b;
+      observed |= static_cast<std::uint64_t>(std::abs(cells[b]) > observed_log_odds) << b;
+    }
+    obstacle_[w] = obstacle;
+    observed_[w] = observed;
   }
 }
 

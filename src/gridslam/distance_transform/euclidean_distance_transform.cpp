@@ -74,8 +74,8 @@ constexpr std::int32_t kNoSource = -1;
 /// column distances (kNoSource: none), `d` receives min_p (x - p)^2 + f[p]. The lower envelope is
 /// kept as the first integer column each parabola wins, so no division is rounded; the minimum is
 /// the same number the float envelope of SquaredDistance1D finds.
-void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* v,
-                        std::int32_t* first) {
+void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg,
+                        std::int32_t* v, std::int32_t* first) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
     const std::int64_t fq = f[q];
@@ -87,7 +87,8 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* v,
     while (k >= 0) {
       const std::int64_t p = v[k];
       // q is strictly nearer than p from the column after floor(num / den) on, where their
-      // parabolas meet; p wins no column any more when that is before its first one.
+      // parabolas meet (at that column p, the earlier one, keeps it, as in SquaredDistance1D);
+      // p wins no column any more when that is before its first one.
       const std::int64_t num = cq - (p * p + f[p]);
       const std::int64_t den = 2 * (q - p);
       if (num < first[k] * den) {
@@ -107,6 +108,9 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* v,
   }
   if (k < 0) {
     std::fill(d, d + n, kInfinity);
+    if (arg != nullptr) {
+      std::fill(arg, arg + n, -1);
+    }
     return;
   }
   for (int e = 0; e <= k; ++e) {
@@ -117,6 +121,9 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* v,
       const std::int64_t dx = x - p;
       d[x] = static_cast<float>(dx * dx + fp);
     }
+    if (arg != nullptr) {
+      std::fill(arg + first[e], arg + end, static_cast<std::int32_t>(p));
+    }
   }
 }
 
@@ -126,70 +133,114 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
                                        SquaredDistanceField& out, bool with_nearest,
                                        float max_distance) {
   GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
-  // Without labels, on grids whose squared distances are exact in floats: the integer row pass
-  // (the same distances, about twice as fast).
+  // On grids whose squared distances are exact in floats: the integer row pass (the same
+  // distances and nearest sources, about twice as fast; SquaredEuclideanDistanceTransformFloat is
+  // the float envelope it is tested against).
   constexpr int kExactSide = 4096;
-  if (!with_nearest && width <= kExactSide && height <= kExactSide) {
-    const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    out.width = width;
-    out.height = height;
-    out.squared.resize(num_cells);
-    out.nearest.clear();
-    if (num_cells == 0) {
-      return;
-    }
-    const auto w = static_cast<std::size_t>(width);
-    const float max_squared = max_distance < kInfinity ? max_distance * max_distance : kInfinity;
-    constexpr int kFar = 1 << 28;
-    thread_local std::vector<int32_t> last;
-    thread_local std::vector<int32_t> g;
-    thread_local std::vector<int32_t> v;
-    thread_local std::vector<int32_t> first;
-    last.assign(w, -kFar);
-    g.resize(num_cells);
-    v.resize(w);
-    first.resize(w);
-    // Column pass: rows of the nearest source at or below (forward), then the nearer of that and
-    // the nearest at or above (backward); g holds the squared vertical distance.
-    for (int j = 0; j < height; ++j) {
-      const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
-      int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
-      for (std::size_t i = 0; i < w; ++i) {
-        last[i] = src[i] != 0 ? j : last[i];
-        row[i] = j - last[i];
-      }
-    }
-    std::fill(last.begin(), last.end(), kFar);
-    for (int j = height - 1; j >= 0; --j) {
-      const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
-      int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
-      if (max_squared < kInfinity) {
-        for (std::size_t i = 0; i < w; ++i) {
-          last[i] = src[i] != 0 ? j : last[i];
-          const int32_t best = std::min(row[i], last[i] - j);
-          const auto bf = static_cast<float>(best);
-          row[i] = best >= kFar / 2 || !(bf * bf <= max_squared) ? kNoSource : best * best;
-        }
-      } else {
-        for (std::size_t i = 0; i < w; ++i) {
-          last[i] = src[i] != 0 ? j : last[i];
-          const int32_t best = std::min(row[i], last[i] - j);
-          row[i] = best >= kFar / 2 ? kNoSource : best * best;
-        }
-      }
-    }
-    for (int j = 0; j < height; ++j) {
-      const std::size_t offset = static_cast<std::size_t>(j) * w;
-      float* d = out.squared.data() + offset;
-      SquaredDistanceRow(g.data() + offset, width, d, v.data(), first.data());
-      if (max_squared < kInfinity) {
-        for (std::size_t i = 0; i < w; ++i) {
-          d[i] = d[i] > max_squared ? kInfinity : d[i];
-        }
-      }
-    }
+  if (width > kExactSide || height > kExactSide) {
+    SquaredEuclideanDistanceTransformFloat(is_source, width, height, out, with_nearest,
+                                           max_distance);
     return;
   }
+  const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  out.width = width;
+  out.height = height;
+  out.squared.resize(num_cells);
+  if (with_nearest) {
+    out.nearest.resize(num_cells);
+  } else {
+    out.nearest.clear();
+  }
+  if (num_cells == 0) {
+    return;
+  }
+  const auto w = static_cast<std::size_t>(width);
+  const float max_squared = max_distance < kInfinity ? max_distance * max_distance : kInfinity;
+  constexpr int kFar = 1 << 28;
+  thread_local std::vector<int32_t> last;
+  thread_local std::vector<int32_t> g;
+  thread_local std::vector<int32_t> source_row;
+  thread_local std::vector<int32_t> v;
+  thread_local std::vector<int32_t> first;
+  thread_local std::vector<int32_t> arg;
+  last.assign(w, -kFar);
+  g.resize(num_cells);
+  v.resize(w);
+  first.resize(w);
+  if (with_nearest) {
+    source_row.resize(num_cells);
+    arg.resize(w);
+  }
+  // Column pass: rows of the nearest source at or below (forward), then the nearer of that and
+  // the nearest at or above (backward; ties to the lower row, as the float version); g holds the
+  // squared vertical distance, source_row that source's row (with labels).
+  for (int j = 0; j < height; ++j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
+    for (std::size_t i = 0; i < w; ++i) {
+      last[i] = src[i] != 0 ? j : last[i];
+      row[i] = j - last[i];
+    }
+  }
+  std::fill(last.begin(), last.end(), kFar);
+  for (int j = height - 1; j >= 0; --j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
+    if (with_nearest) {
+      int32_t* rows = source_row.data() + static_cast<std::size_t>(j) * w;
+      for (std::size_t i = 0; i < w; ++i) {
+        last[i] = src[i] != 0 ? j : last[i];
+        const int32_t below = row[i];
+        const int32_t above = last[i] - j;
+        rows[i] = below <= above ? j - below : last[i];
+        const int32_t best = std::min(below, above);
+        const auto bf = static_cast<float>(best);
+        row[i] = best >= kFar / 2 || !(bf * bf <= max_squared) ? kNoSource : best * best;
+      }
+    } else if (max_squared < kInfinity) {
+      for (std::size_t i = 0; i < w; ++i) {
+        last[i] = src[i] != 0 ? j : last[i];
+        const int32_t best = std::min(row[i], last[i] - j);
+        const auto bf = static_cast<float>(best);
+        row[i] = best >= kFar / 2 || !(bf * bf <= max_squared) ? kNoSource : best * best;
+      }
+    } else {
+      for (std::size_t i = 0; i < w; ++i) {
+        last[i] = src[i] != 0 ? j : last[i];
+        const int32_t best = std::min(row[i], last[i] - j);
+        row[i] = best >= kFar / 2 ? kNoSource : best * best;
+      }
+    }
+  }
+  for (int j = 0; j < height; ++j) {
+    const std::size_t offset = static_cast<std::size_t>(j) * w;
+    float* d = out.squared.data() + offset;
+    SquaredDistanceRow(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr, v.data(),
+                       first.data());
+    if (with_nearest) {
+      int32_t* nearest = out.nearest.data() + offset;
+      for (std::size_t i = 0; i < w; ++i) {
+        const int32_t p = arg[i];
+        nearest[i] = p < 0 ? -1 : source_row[offset + static_cast<std::size_t>(p)] * width + p;
+      }
+    }
+    if (max_squared < kInfinity) {
+      for (std::size_t i = 0; i < w; ++i) {
+        if (d[i] > max_squared) {
+          d[i] = kInfinity;
+          if (with_nearest) {
+            out.nearest[offset + i] = -1;
+          }
+        }
+      }
+    }
+  }
+}
+
+void SquaredEuclideanDistanceTransformFloat(const std::uint8_t* is_source, int width, int height,
+                                            SquaredDistanceField& out, bool with_nearest,
+                                            float max_distance) {
+  GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
   const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   out.width = width;
   out.height = height;

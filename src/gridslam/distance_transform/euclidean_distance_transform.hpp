@@ -44,6 +44,13 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
                                        SquaredDistanceField& out, bool with_nearest = false,
                                        float max_distance = kInfinity);
 
+/// The same transform with the float lower envelope of SquaredDistance1D on every row (F&H): what
+/// SquaredEuclideanDistanceTransform computes with integers on grids up to 4096 cells a side
+/// (the same distances and labels, tested), and uses beyond.
+void SquaredEuclideanDistanceTransformFloat(const std::uint8_t* is_source, int width, int height,
+                                            SquaredDistanceField& out, bool with_nearest = false,
+                                            float max_distance = kInfinity);
+
 /// Euclidean distance in cells from every pixel of an 8-bit single-channel image to its nearest
 /// ZERO pixel (OpenCV's convention: zero pixels are the obstacles). Returns CV_32F; +inf when the
 /// image has no zero pixel.

@@ -115,10 +115,11 @@ TEST(SquaredEuclideanDistanceTransform, TruncationKeepsDistancesBelowTheLimitExa
   }
 }
 
-// Without labels the transform takes an integer row pass; with labels, the float envelope of
-// SquaredDistance1D. Both must give the same distances, bit for bit (the mapper's results depend
-// on them), truncated or not, on sparse and dense grids of many shapes.
-TEST(SquaredEuclideanDistanceTransform, IntegerAndFloatEnvelopesGiveTheSameDistances) {
+// The transform's integer row pass and the float envelope of SquaredDistance1D give the same
+// distances and the same nearest sources, bit for bit (the mapper's and the front end's results
+// depend on them), truncated or not, on sparse and dense grids of many shapes (dense random
+// grids are full of ties between equidistant sources).
+TEST(SquaredEuclideanDistanceTransform, IntegerAndFloatEnvelopesGiveTheSameDistancesAndLabels) {
   std::mt19937 rng(11);
   long cells = 0;
   for (int trial = 0; trial < 300; ++trial) {
@@ -132,14 +133,21 @@ TEST(SquaredEuclideanDistanceTransform, IntegerAndFloatEnvelopesGiveTheSameDista
     }
     const float max_distance =
         trial % 3 == 0 ? kInfinity : std::uniform_real_distribution<float>(0.5F, 60.0F)(rng);
-    SquaredDistanceField fast;
-    SquaredDistanceField labelled;
-    SquaredEuclideanDistanceTransform(src.data(), w, h, fast, false, max_distance);
-    SquaredEuclideanDistanceTransform(src.data(), w, h, labelled, true, max_distance);
-    ASSERT_EQ(fast.squared.size(), labelled.squared.size());
-    for (std::size_t k = 0; k < fast.squared.size(); ++k) {
-      ASSERT_EQ(fast.squared[k], labelled.squared[k])
-          << "trial " << trial << " " << w << "x" << h << " cell " << k;
+    for (const bool labels : {false, true}) {
+      SquaredDistanceField fast;
+      SquaredDistanceField reference;
+      SquaredEuclideanDistanceTransform(src.data(), w, h, fast, labels, max_distance);
+      SquaredEuclideanDistanceTransformFloat(src.data(), w, h, reference, labels, max_distance);
+      ASSERT_EQ(fast.squared.size(), reference.squared.size());
+      ASSERT_EQ(fast.nearest.size(), reference.nearest.size());
+      for (std::size_t k = 0; k < fast.squared.size(); ++k) {
+        ASSERT_EQ(fast.squared[k], reference.squared[k])
+            << "trial " << trial << " " << w << "x" << h << " cell " << k;
+      }
+      for (std::size_t k = 0; k < fast.nearest.size(); ++k) {
+        ASSERT_EQ(fast.nearest[k], reference.nearest[k])
+            << "trial " << trial << " " << w << "x" << h << " cell " << k;
+      }
     }
     cells += static_cast<long>(src.size());
   }

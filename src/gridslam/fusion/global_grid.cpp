@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -70,11 +71,10 @@ struct PreparedScans {
   Eigen::Vector2d hi = -lo;
 };
 
-PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& options) {
-  // Select the scans to insert and their points in the map frame.
-  PreparedScans prepared;
-  Eigen::Vector2d& lo = prepared.lo;
-  Eigen::Vector2d& hi = prepared.hi;
+PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                      int threads = 1) {
+  // Select the scans to insert, then their points in the map frame (`threads` at once).
+  std::vector<const PosedScan*> selected;
   const Pose2* last = nullptr;
   for (const PosedScan& s : scans) {
     if (s.scan == nullptr) {
@@ -86,21 +86,47 @@ PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& 
       continue;
     }
     last = &s.T_map_base;
-    const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
-    PreparedScans::Scan p;
-    p.origin = s.T_map_base * points.origin;
-    p.points.reserve(points.points.size());
-    const PointTransform to_map(s.T_map_base);
-    for (const auto& q : points.points) {
-      p.points.push_back(to_map(q));
+    selected.push_back(&s);
+  }
+  PreparedScans prepared;
+  prepared.scans.resize(selected.size());
+  const auto prepare = [&](std::size_t begin, std::size_t end, Eigen::Vector2d& lo,
+                           Eigen::Vector2d& hi) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const PosedScan& s = *selected[k];
+      const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+      PreparedScans::Scan& p = prepared.scans[k];
+      p.origin = s.T_map_base * points.origin;
+      p.points.reserve(points.points.size());
+      const PointTransform to_map(s.T_map_base);
+      for (const auto& q : points.points) {
+        p.points.push_back(to_map(q));
+      }
+      lo = lo.cwiseMin(p.origin);
+      hi = hi.cwiseMax(p.origin);
+      for (const auto& q : p.points) {
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
     }
-    lo = lo.cwiseMin(p.origin);
-    hi = hi.cwiseMax(p.origin);
-    for (const auto& q : p.points) {
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-    prepared.scans.push_back(std::move(p));
+  };
+  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
+                                                    std::max<std::size_t>(1, selected.size()));
+  std::vector<Eigen::Vector2d> lo(parts, prepared.lo);
+  std::vector<Eigen::Vector2d> hi(parts, prepared.hi);
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < parts; ++t) {
+    workers.emplace_back([&, t] {
+      prepare(selected.size() * t / parts, selected.size() * (t + 1) / parts, lo[t], hi[t]);
+    });
+  }
+  prepare(0, selected.size() / parts, lo[0], hi[0]);
+  for (std::thread& w : workers) {
+    w.join();
+  }
+  for (std::size_t t = 0; t < parts; ++t) {  // min and max: the same in any order
+    prepared.lo = prepared.lo.cwiseMin(lo[t]);
+    prepared.hi = prepared.hi.cwiseMax(hi[t]);
   }
   return prepared;
 }
@@ -140,29 +166,163 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
   return grid;
 }
 
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
-                                const FusionOptions& options) {
-  const PreparedScans prepared = Prepare(scans, options);
+namespace {
+
+/// Inserts the prepared scans into the rows [j0, j1) of the grid only, in the order FuseScans
+/// inserts them (the same updates of every cell in the same order: the same values); `cell(i, j)`
+/// returns the log-odds of a cell to update. Bands of rows inserted at once must not share
+/// storage (whole tile rows for a tiled grid).
+template <class Cell>
+void InsertBand(const PreparedScans& prepared, const MapLimits& limits,
+                const FusionOptions& options, int j0, int j1, Cell&& cell) {
+  if (j0 <= 0 && j1 >= limits.Height()) {
+    InsertPrepared(prepared, limits, options, cell);
+    return;
+  }
+  const auto hit = static_cast<float>(ProbabilityToLogOdds(options.hit_probability));
+  const auto miss = static_cast<float>(ProbabilityToLogOdds(options.miss_probability));
+  const auto clamp = static_cast<float>(ProbabilityToLogOdds(options.clamp_probability));
+  for (const PreparedScans::Scan& p : prepared.scans) {
+    const Eigen::Array2i from = limits.CellIndex(p.origin);
+    for (const auto& q : p.points) {
+      const Eigen::Array2i to = limits.CellIndex(q);
+      if (std::max(from.y(), to.y()) < j0 || std::min(from.y(), to.y()) >= j1) {
+        continue;  // the ray stays out of the band
+      }
+      // TraceLine(from, to, false, ...) restricted to the band: the same cells in the same order.
+      int x = from.x();
+      int y = from.y();
+      const int dx = std::abs(to.x() - x);
+      const int dy = -std::abs(to.y() - y);
+      const int sx = x < to.x() ? 1 : -1;
+      const int sy = y < to.y() ? 1 : -1;
+      int err = dx + dy;
+      while (x != to.x() || y != to.y()) {
+        if (y >= j0 && y < j1) {
+          float& v = cell(x, y);
+          v = std::max(-clamp, v + miss);
+        } else if ((sy > 0 && y >= j1) || (sy < 0 && y < j0)) {
+          break;  // past the band, and moving away
+        }
+        const int e2 = 2 * err;
+        if (e2 >= dy) {
+          err += dy;
+          x += sx;
+        }
+        if (e2 <= dx) {
+          err += dx;
+          y += sy;
+        }
+      }
+      if (to.y() >= j0 && to.y() < j1) {
+        float& v = cell(to.x(), to.y());
+        v = std::min(clamp, v + hit);
+      }
+    }
+  }
+}
+
+/// Row bands of about as many returns each, at multiples of `granule` rows; `bands` + 1 edges.
+std::vector<int> BandEdges(const PreparedScans& prepared, const MapLimits& limits, int bands,
+                           int granule) {
+  const int granules = (limits.Height() + granule - 1) / granule;
+  std::vector<long> per_granule(static_cast<std::size_t>(granules), 0);
+  long returns = 0;
+  for (const PreparedScans::Scan& p : prepared.scans) {
+    for (const auto& q : p.points) {
+      ++per_granule[static_cast<std::size_t>(limits.CellIndex(q).y() / granule)];
+      ++returns;
+    }
+  }
+  std::vector<int> edges = {0};
+  long seen = 0;
+  for (int g = 0; g < granules && static_cast<int>(edges.size()) < bands; ++g) {
+    seen += per_granule[static_cast<std::size_t>(g)];
+    if (seen * bands >= returns * static_cast<long>(edges.size())) {
+      edges.push_back(std::min(limits.Height(), (g + 1) * granule));
+    }
+  }
+  edges.push_back(limits.Height());
+  return edges;
+}
+
+/// Runs band(j0, j1) for the bands between consecutive `edges`, the first on this thread.
+template <class Band>
+void RunBands(const std::vector<int>& edges, Band&& band) {
+  std::vector<std::thread> workers;
+  for (std::size_t b = 1; b + 1 < edges.size(); ++b) {
+    if (edges[b] < edges[b + 1]) {
+      workers.emplace_back([&, b] { band(edges[b], edges[b + 1]); });
+    }
+  }
+  band(edges[0], edges[1]);
+  for (std::thread& w : workers) {
+    w.join();
+  }
+}
+
+}  // namespace
+
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads, long dense_cells) {
+  const PreparedScans prepared = Prepare(scans, options, threads);
   if (prepared.scans.empty()) {
     return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
                             kUnknownLogOdds);
   }
-  TiledGrid<float> grid(
-      BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
-      kUnknownLogOdds);
-  // Consecutive cells of a ray mostly share a tile: keep the last one at hand.
-  constexpr int kBits = TiledGrid<float>::kTileBits;
-  int tile_i = -1;
-  int tile_j = -1;
-  float* tile = nullptr;
-  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& {
-    if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
-      tile_i = i >> kBits;
-      tile_j = j >> kBits;
-      tile = grid.MutableTile(tile_i, tile_j);
+  const MapLimits limits =
+      BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin);
+  constexpr int kTile = TiledGrid<float>::kTileSize;
+  if (limits.NumCells() <= dense_cells) {
+    // Small enough to fuse densely (faster per cell), then keep the written tiles.
+    Grid2D<float> dense(limits, kUnknownLogOdds);
+    const int w = limits.Width();
+    float* cells = dense.data();
+    RunBands(BandEdges(prepared, limits, std::max(1, threads), 1), [&](int j0, int j1) {
+      InsertBand(prepared, limits, options, j0, j1, [&](int i, int j) -> float& {
+        return cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+                     static_cast<std::size_t>(i)];
+      });
+    });
+    TiledGrid<float> grid(limits, kUnknownLogOdds);
+    for (int tj = 0; tj < grid.TilesY(); ++tj) {
+      for (int ti = 0; ti < grid.TilesX(); ++ti) {
+        const int i0 = ti * kTile;
+        const int j0 = tj * kTile;
+        const int i1 = std::min(limits.Width(), i0 + kTile);
+        const int j1 = std::min(limits.Height(), j0 + kTile);
+        bool written = false;
+        for (int j = j0; j < j1 && !written; ++j) {
+          written = std::any_of(&dense(i0, j), &dense(i0, j) + (i1 - i0),
+                                [](float v) { return v != kUnknownLogOdds; });
+        }
+        if (written) {
+          float* tile = grid.MutableTile(ti, tj);
+          for (int j = j0; j < j1; ++j) {
+            std::copy(&dense(i0, j), &dense(i0, j) + (i1 - i0), tile + (j - j0) * kTile);
+          }
+        }
+      }
     }
-    return tile[TiledGrid<float>::InTile(i, j)];
-  });
+    return grid;
+  }
+  TiledGrid<float> grid(limits, kUnknownLogOdds);
+  RunBands(BandEdges(prepared, limits, std::clamp(threads, 1, grid.TilesY()), kTile),
+           [&](int j0, int j1) {
+             // The tile of the last cell: consecutive cells of a ray mostly share one.
+             constexpr int kBits = TiledGrid<float>::kTileBits;
+             int tile_i = -1;
+             int tile_j = -1;
+             float* tile = nullptr;
+             InsertBand(prepared, limits, options, j0, j1, [&](int i, int j) -> float& {
+               if ((i >> kBits) != tile_i || (j >> kBits) != tile_j) {
+                 tile_i = i >> kBits;
+                 tile_j = j >> kBits;
+                 tile = grid.MutableTile(tile_i, tile_j);
+               }
+               return tile[TiledGrid<float>::InTile(i, j)];
+             });
+           });
   return grid;
 }
 

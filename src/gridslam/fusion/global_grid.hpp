@@ -61,10 +61,17 @@ constexpr long kMaxFusedCells = 250'000'000L;
 /// Re-inserts the scans into a log-odds grid covering them (method "scans"). Throws
 /// std::length_error if the grid would exceed kMaxFusedCells.
 Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions& options);
+/// Maps of at most this many cells (64 MB of floats) are fused densely, then tiled.
+constexpr long kDenseFusionCells = 16'000'000L;
+
 /// FuseScans into a tiled grid (the same limits and cells; tiles no scan touched are not
-/// allocated): what the mapper's final fusion uses.
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans,
-                                const FusionOptions& options);
+/// allocated): what the mapper's final fusion uses. Up to kDenseFusionCells the cells are fused
+/// in a dense grid first (faster), beyond straight into tiles (memory bounded by the area the
+/// scans cover). `threads` > 1 inserts bands of rows at once, each band's cells updated in
+/// FuseScans' order: the same values for any number of threads.
+/// `dense_cells`: the kDenseFusionCells threshold (tests set 0 to fuse into tiles always).
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads = 1, long dense_cells = kDenseFusionCells);
 
 /// A key map at its optimized pose (borrowed).
 struct PosedKeyMap {

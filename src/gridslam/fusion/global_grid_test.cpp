@@ -1,7 +1,9 @@
 #include "gridslam/fusion/global_grid.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +53,41 @@ TEST(GlobalGrid, NearestKeyMapAtIdentityReproducesTheKeyMap) {
                   2.0F);
   EXPECT_FLOAT_EQ(grid.at(grid.Limits().CellIndex(key_map.log_odds.Limits().CellCenter({30, 5}))),
                   -1.0F);
+}
+
+// The tiled fusion holds the same cells as the dense one, bit for bit, whether its bands of rows
+// are inserted by one thread or several (random scans crossing many bands, saturating cells).
+TEST(GlobalGrid, TiledFusionEqualsDenseFusionWithAnyNumberOfThreads) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> position(-15.0, 15.0);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  std::uniform_real_distribution<float> range(0.3F, 25.0F);
+  std::vector<LaserScan> laser(60);
+  std::vector<PosedScan> scans;
+  for (LaserScan& scan : laser) {
+    scan.angle_min = -std::numbers::pi / 2;
+    scan.angle_increment = std::numbers::pi / 180.0;
+    scan.range_min = 0.1;
+    scan.range_max = 30.0;
+    for (int k = 0; k <= 180; ++k) {
+      scan.ranges.push_back(k % 17 == 0 ? 40.0F : range(rng));
+    }
+    scans.push_back({Pose2(position(rng), position(rng), angle(rng)), Pose2(0.1, 0.0, 0.0), &scan});
+  }
+  FusionOptions options;
+  options.min_motion = 0.0;
+  options.min_rotation = 0.0;
+  const Grid2D<float> dense = FuseScans(scans, options);
+  for (const long dense_cells : {kDenseFusionCells, 0L}) {  // dense first, or tiles only
+    for (const int threads : {1, 2, 3, 7}) {
+      const Grid2D<float> tiled = FuseScansTiled(scans, options, threads, dense_cells).ToDense();
+      ASSERT_EQ(tiled.Width(), dense.Width());
+      ASSERT_EQ(tiled.Height(), dense.Height());
+      ASSERT_EQ(tiled.Limits().Origin(), dense.Limits().Origin());
+      EXPECT_EQ(std::memcmp(tiled.data(), dense.data(), dense.size() * sizeof(float)), 0)
+          << threads << " threads, dense up to " << dense_cells << " cells";
+    }
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // fields and feature images. Row-major, row j = y index (row 0 at the lowest y), column i = x.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "gridslam/grid/cell_shift.hpp"
@@ -15,6 +16,9 @@ class Grid2D {
   Grid2D() = default;
   Grid2D(const MapLimits& limits, T fill)
       : limits_(limits), cells_(static_cast<std::size_t>(limits.NumCells()), fill) {}
+  /// Takes `cells` (row-major, limits.NumCells() of them) as they are.
+  Grid2D(const MapLimits& limits, std::vector<T> cells)
+      : limits_(limits), cells_(std::move(cells)) {}
 
   [[nodiscard]] const MapLimits& Limits() const { return limits_; }
   [[nodiscard]] int Width() const { return limits_.Width(); }

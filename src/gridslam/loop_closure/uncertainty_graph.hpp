@@ -20,6 +20,11 @@ class UncertaintyGraph {
   void AddEdge(int a, int b, double weight);
   /// Shortest weighted path length from `source` to every node (kUnreachable if none).
   [[nodiscard]] std::vector<double> DistancesFrom(int source) const;
+  /// The same, but only as far as `targets` need: the search stops once every target has its
+  /// distance. Targets, and the nodes nearer than the farthest of them, hold exactly what
+  /// DistancesFrom(source) gives; the others hold NaN (not computed). The cost grows with the
+  /// part of the graph within the targets' distance, not with the whole graph.
+  [[nodiscard]] std::vector<double> DistancesFrom(int source, const std::vector<int>& targets) const;
   [[nodiscard]] int size() const { return static_cast<int>(adjacency_.size()); }
 
  private:

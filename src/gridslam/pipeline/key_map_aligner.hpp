@@ -72,7 +72,7 @@ class FeatureAligner : public Aligner {
   /// `graph` is borrowed (its key maps' descriptions are aligned).
   /// `cache_size`: key-map geometries kept (GeometryCache).
   FeatureAligner(const KeyMapGraph& graph, const matching::AlignOptions& matching,
-                 const loop_closure::LoopClosureOptions& loop_closure, int cache_size = 128);
+                 const loop_closure::LoopClosureOptions& loop_closure, int cache_size = 256);
   std::optional<Alignment> Align(int i, int k, const Pose2* prior,
                                  double uncertainty_distance) override;
   /// The geometry of key map `id` as its description computed it (saves recomputing it for the

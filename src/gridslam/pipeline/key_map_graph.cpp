@@ -52,7 +52,11 @@ int KeyMapGraph::RecordClosure(const loop_closure::Match& match, ClosureOutcome 
                                bool appearance) {
   closures_.push_back({match.i, match.k, match.T_i_k, outcome, appearance});
   ++outcome_counts_[static_cast<std::size_t>(outcome)];
-  return static_cast<int>(closures_.size()) - 1;
+  const int index = static_cast<int>(closures_.size()) - 1;
+  if (outcome == ClosureOutcome::kGated) {
+    gated_records_[PairKey(match.i, match.k)].push_back(index);
+  }
+  return index;
 }
 
 int KeyMapGraph::AddLoopEdge(const loop_closure::Match& match, ClosureOutcome outcome,
@@ -81,12 +85,15 @@ void KeyMapGraph::AcceptGated(const loop_closure::Match& match, const Eigen::Mat
   edge.T_from_to = match.T_i_k;
   edge.information = information;
   edge.loop = true;
-  for (std::size_t c = 0; c < closures_.size(); ++c) {
-    if (closures_[c].from == edge.from && closures_[c].to == edge.to &&
-        closures_[c].outcome == ClosureOutcome::kGated) {
-      SetOutcome(static_cast<int>(c), ClosureOutcome::kAccepted);
-      edge.closure = static_cast<int>(c);
+  // Every record of the pair still gated (in the order recorded) becomes accepted.
+  if (const auto it = gated_records_.find(PairKey(edge.from, edge.to)); it != gated_records_.end()) {
+    for (const int c : it->second) {
+      if (closures_[static_cast<std::size_t>(c)].outcome == ClosureOutcome::kGated) {
+        SetOutcome(c, ClosureOutcome::kAccepted);
+        edge.closure = c;
+      }
     }
+    gated_records_.erase(it);
   }
   AddEdge(edge, uncertainty_weight);
   ++loop_edges_added_;

@@ -9,8 +9,10 @@
 // as they happen (DrainEvents).
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -130,6 +132,11 @@ class KeyMapGraph : public loop_closure::GraphView {
   [[nodiscard]] std::vector<double> DistancesFrom(int id) const {
     return uncertainty_.DistancesFrom(id);
   }
+  /// ... only as far as `targets` need (UncertaintyGraph::DistancesFrom with targets: the others
+  /// may be NaN).
+  [[nodiscard]] std::vector<double> DistancesFrom(int id, const std::vector<int>& targets) const {
+    return uncertainty_.DistancesFrom(id, targets);
+  }
   /// The optimizer's graph: current estimates, active edges, one anchor per component.
   [[nodiscard]] const pose_graph::PoseGraph& ActiveGraph() const { return sgd_->graph(); }
   [[nodiscard]] long loop_edges_added() const { return loop_edges_added_; }
@@ -150,6 +157,12 @@ class KeyMapGraph : public loop_closure::GraphView {
   std::vector<Pose2> estimates_;  ///< T_map_key by vertex id.
   std::vector<EdgeRecord> edges_;
   std::vector<ClosureRecord> closures_;
+  /// Records still gated, by (from, to): AcceptGated looks up its pair, not every record.
+  std::unordered_map<std::uint64_t, std::vector<int>> gated_records_;
+  [[nodiscard]] static std::uint64_t PairKey(int from, int to) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
+           static_cast<std::uint32_t>(to);
+  }
   std::vector<int> robot_parent_;  ///< Union-find of robots joined into one map.
   std::vector<int> last_node_;
   std::vector<int> num_nodes_;

@@ -1,5 +1,6 @@
 #include "gridslam/pipeline/key_map_worker.hpp"
 
+#include <ctime>
 #include <utility>
 
 namespace gridslam::pipeline {
@@ -31,12 +32,22 @@ bool KeyMapWorker::Busy() {
   return running_ || !queue_.empty();
 }
 
+std::size_t KeyMapWorker::Queued() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return queue_.size();
+}
+
 void KeyMapWorker::Drain() {
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [&] { return (!running_ && queue_.empty()) || error_ != nullptr; });
   if (error_ != nullptr) {
     std::rethrow_exception(error_);
   }
+}
+
+double KeyMapWorker::CpuSeconds() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return cpu_seconds_;
 }
 
 void KeyMapWorker::Loop() {
@@ -56,7 +67,10 @@ void KeyMapWorker::Loop() {
     } catch (...) {
       error = std::current_exception();
     }
+    timespec cpu{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu);
     lock.lock();
+    cpu_seconds_ = static_cast<double>(cpu.tv_sec) + 1e-9 * static_cast<double>(cpu.tv_nsec);
     running_ = false;
     error_ = error != nullptr ? error : error_;
     done_.notify_all();

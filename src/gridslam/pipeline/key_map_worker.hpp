@@ -27,8 +27,12 @@ class KeyMapWorker {
   void Push(KeyMapJob job);
   /// True while a job is queued or running (a hint: it may change at once).
   [[nodiscard]] bool Busy();
+  /// Jobs waiting (not yet started; a hint).
+  [[nodiscard]] std::size_t Queued();
   /// Waits until every pushed job has run; rethrows what a job threw.
   void Drain();
+  /// CPU time of the worker thread after its latest job [s].
+  [[nodiscard]] double CpuSeconds();
 
  private:
   void Loop();
@@ -42,6 +46,7 @@ class KeyMapWorker {
   bool running_ = false;
   bool stop_ = false;
   std::exception_ptr error_;
+  double cpu_seconds_ = 0.0;
   std::thread thread_;
 };
 

@@ -115,9 +115,9 @@ void Mapper::Impl::SubmitKeyMap(int robot, keymap::KeyMap key_map, Time time) {
     IntegrateKeyMap(job);
     return;
   }
-  // The worker integrates; the description goes to whichever thread is free: this one while
-  // the worker still has key maps to integrate, else the worker.
-  if (worker->Busy()) {
+  // The worker integrates; the description goes to whichever thread is free: the worker, unless
+  // key maps are already waiting for it (then this thread describes the new one).
+  if (worker->Queued() > 0) {
     job.described = Describe(job.key_map);
   }
   worker->Push(std::move(job));

@@ -72,6 +72,9 @@ struct MapperStats {
   double seconds_optimization = 0.0;
   double seconds_final = 0.0;
   double seconds_fusion = 0.0;
+  /// CPU time of the worker thread that integrated the key maps (compute.threads >= 2), up to
+  /// the end of the log [s]; 0 with one thread.
+  double cpu_seconds_worker = 0.0;
   double chi2_final = 0.0;
 };
 

@@ -6,6 +6,7 @@
 // is carried out here: loop edges, a join of two components (ComponentJoiner), or nothing.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gridslam/common/logging.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
@@ -19,7 +20,21 @@ using loop_closure::Verdict;
 PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
   const loop_closure::LoopClosureOptions& lc = options.loop_closure;
   const Eigen::Matrix3d information = Information(lc.sigma_xy, lc.sigma_theta);
-  const std::vector<double> distance = graph.DistancesFrom(k);
+  // Uncertainty distances of the key maps that can be candidates: those within the largest
+  // search radius (a little more: CandidateSelector measures the distance in k's frame), so the
+  // search costs what the neighbourhood of k costs, not what the whole graph does.
+  std::vector<int> near;
+  const Eigen::Vector2d centre = graph.Estimate(k).translation();
+  const double reach = lc.max_search_radius + 1e-3;
+  for (int i = 0; i < graph.size(); ++i) {
+    if (i != k && (graph.Estimate(i).translation() - centre).norm() < reach) {
+      near.push_back(i);
+    }
+  }
+  const std::vector<double> distance =
+      near.empty() ? std::vector<double>(static_cast<std::size_t>(graph.size()),
+                                         std::numeric_limits<double>::quiet_NaN())
+                   : graph.DistancesFrom(k, near);
   PriorSearch search;
   search.tried = selector.Prior(graph, k, distance);
   for (const int i : search.tried) {

@@ -6,6 +6,7 @@
 
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/grid/log_odds.hpp"
+#include "gridslam/pipeline/key_map_worker.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -70,6 +71,9 @@ MapperResult Mapper::Impl::Finish() {
     }
   }
   Sync();
+  if (worker != nullptr) {
+    stats.cpu_seconds_worker = worker->CpuSeconds();
+  }
   now = front_now;
   graph.SetTime(now);
   FinalOptimization();
@@ -110,7 +114,8 @@ MapperResult Mapper::Impl::Finish() {
               {result.trajectories[r][f.scan_index].T_map_base, f.T_base_laser, &f.scan});
         }
       }
-      result.maps.push_back(fusion::FuseScansTiled(posed, options.fusion));
+      result.maps.push_back(
+          fusion::FuseScansTiled(posed, options.fusion, options.compute.Threads()));
     }
   }
   stats.seconds_fusion += SecondsSince(start);

@@ -96,7 +96,7 @@ struct ComputeOptions {
   int threads = 0;
   /// Key-map distance fields kept in memory for loop-closure alignments (about 0.4 MB each for
   /// 15 m key maps at 5 cm); the others are recomputed from the key map's cells when needed [-].
-  int key_map_cache = 128;
+  int key_map_cache = 256;
 
   template <class V>
   void Visit(V& v) {

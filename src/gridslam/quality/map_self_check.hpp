@@ -48,10 +48,12 @@ struct SelfCheckResult {
 /// Replays `scans` (in trajectory order; borrowed) against the fused log-odds map `log_odds`,
 /// thresholded as `fusion` does for map.pgm. Scans closer than min_motion / min_rotation to the
 /// previous replayed scan are skipped. Memory: the tiles of the map the returns fall in, not the
-/// map's bounding box (distances to the walls are computed block by block around the returns).
+/// map's bounding box (distances to the walls are computed block by block around the returns,
+/// `threads` blocks at once: the same result for any number).
 SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
                          const std::vector<fusion::PosedScan>& scans,
-                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options,
+                         int threads = 1);
 SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
                          const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
 
