@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <system_error>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -170,7 +171,9 @@ Result<RawImage> ParsePgm(const std::string& text, const std::string& path) {
 }
 
 Result<RawImage> ReadRawImage(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) {
+  // The error_code overload: a path the system rejects (too long, say) is an error, not a throw.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
     return NotFound("cannot open image", path);
   }
   auto text = ReadTextFile(path);
