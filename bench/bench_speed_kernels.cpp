@@ -67,12 +67,15 @@ void BM_DistanceTransform(benchmark::State& state) {
   const bool labels = state.range(0) != 0;
   distance_transform::SquaredDistanceField field;
   for (auto _ : state) {
-    distance_transform::SquaredEuclideanDistanceTransform(sources.data(), 301, 301, field,
-                                                          labels);
+    distance_transform::SquaredEuclideanDistanceTransform(sources.data(), 301, 301, field, labels);
     benchmark::DoNotOptimize(field.squared.data());
   }
 }
-BENCHMARK(BM_DistanceTransform)->ArgNames({"labels"})->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DistanceTransform)
+    ->ArgNames({"labels"})
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMicrosecond);
 
 struct ScanFixture {
   ScanFixture() : laser(3000) {
@@ -88,8 +91,8 @@ struct ScanFixture {
         scan.ranges.push_back(range(rng));
       }
       const double s = 0.02 * static_cast<double>(k);
-      scans.push_back({Pose2(20.0 * std::cos(0.05 * s), 20.0 * std::sin(0.05 * s), s), Pose2(),
-                       &scan});
+      scans.push_back(
+          {Pose2(20.0 * std::cos(0.05 * s), 20.0 * std::sin(0.05 * s), s), Pose2(), &scan});
     }
     options.min_motion = 0.0;
     options.min_rotation = 0.0;

@@ -74,8 +74,8 @@ constexpr std::int32_t kNoSource = -1;
 /// column distances (kNoSource: none), `d` receives min_p (x - p)^2 + f[p]. The lower envelope is
 /// kept as the first integer column each parabola wins, so no division is rounded; the minimum is
 /// the same number the float envelope of SquaredDistance1D finds.
-void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg,
-                        std::int32_t* v, std::int32_t* first) {
+void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
+                        std::int32_t* first) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
     const std::int64_t fq = f[q];

@@ -162,7 +162,8 @@ Grid2D<float> FuseScans(const std::vector<PosedScan>& scans, const FusionOptions
   }
   Grid2D<float> grid(BoundingLimits(prepared.lo, prepared.hi, options.resolution, options.margin),
                      kUnknownLogOdds);
-  InsertPrepared(prepared, grid.Limits(), options, [&](int i, int j) -> float& { return grid(i, j); });
+  InsertPrepared(prepared, grid.Limits(), options,
+                 [&](int i, int j) -> float& { return grid(i, j); });
   return grid;
 }
 

@@ -24,7 +24,8 @@ class UncertaintyGraph {
   /// distance. Targets, and the nodes nearer than the farthest of them, hold exactly what
   /// DistancesFrom(source) gives; the others hold NaN (not computed). The cost grows with the
   /// part of the graph within the targets' distance, not with the whole graph.
-  [[nodiscard]] std::vector<double> DistancesFrom(int source, const std::vector<int>& targets) const;
+  [[nodiscard]] std::vector<double> DistancesFrom(int source,
+                                                  const std::vector<int>& targets) const;
   [[nodiscard]] int size() const { return static_cast<int>(adjacency_.size()); }
 
  private:

@@ -39,9 +39,9 @@ class Aligner {
 
 /// What FeatureAligner counted.
 struct AlignerCounters {
-  long verified = 0;        ///< Alignments accepted by matching + verification.
-  long prior_refined = 0;   ///< Found by refinement from the prediction.
-  long prior_searches = 0;  ///< Correlative searches around the prediction.
+  long verified = 0;             ///< Alignments accepted by matching + verification.
+  long prior_refined = 0;        ///< Found by refinement from the prediction.
+  long prior_searches = 0;       ///< Correlative searches around the prediction.
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
 };
 

@@ -86,7 +86,8 @@ void KeyMapGraph::AcceptGated(const loop_closure::Match& match, const Eigen::Mat
   edge.information = information;
   edge.loop = true;
   // Every record of the pair still gated (in the order recorded) becomes accepted.
-  if (const auto it = gated_records_.find(PairKey(edge.from, edge.to)); it != gated_records_.end()) {
+  if (const auto it = gated_records_.find(PairKey(edge.from, edge.to));
+      it != gated_records_.end()) {
     for (const int c : it->second) {
       if (closures_[static_cast<std::size_t>(c)].outcome == ClosureOutcome::kGated) {
         SetOutcome(c, ClosureOutcome::kAccepted);

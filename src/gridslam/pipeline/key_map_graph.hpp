@@ -35,8 +35,8 @@ struct KeyMapNode {
   int previous = -1;    ///< The robot's previous key map (vertex id), -1 for its first; set.
   double travel = 0.0;  ///< The robot's path length at the key map [m].
   Time time;
-  Pose2 T_odom_key;        ///< In the robot's front-end frame.
-  keymap::KeyMap key_map;  ///< Kept only for the nearest-key-map fusion.
+  Pose2 T_odom_key;               ///< In the robot's front-end frame.
+  keymap::KeyMap key_map;         ///< Kept only for the nearest-key-map fusion.
   matching::FeatureSet features;  ///< The description's features.
   /// The description's obstacle and observed cells: the distance field and the obstacle points
   /// follow from them (description::ComputeGeometry; FeatureAligner keeps the recent ones).

@@ -105,9 +105,8 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
       return current.travel - graph.Travel(id) >= lc.min_travel_gap &&
              std::find(prior_tried.begin(), prior_tried.end(), id) == prior_tried.end();
     };
-    const auto votes =
-        robots[r].appearance->Query(current.features.descriptors,
-                                    lc.appearance_candidates, /*min_votes=*/5, allowed);
+    const auto votes = robots[r].appearance->Query(
+        current.features.descriptors, lc.appearance_candidates, /*min_votes=*/5, allowed);
     for (const loop_closure::AppearanceVote& vote : votes) {
       ++stats.appearance_candidates;
       const std::optional<Alignment> measured = aligner.Align(vote.node, k, nullptr, 0.0);

@@ -150,7 +150,8 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
     }
   }
   const auto resolution = static_cast<float>(limits.Resolution());
-  const auto occupied_cells = static_cast<float>(options.distance_clamp / limits.Resolution() + 2.0);
+  const auto occupied_cells =
+      static_cast<float>(options.distance_clamp / limits.Resolution() + 2.0);
   const auto not_free_cells =
       static_cast<float>(options.agreement_distance / limits.Resolution() + 2.0);
   // Blocks with returns, each on its own (`threads` at once): every return gets its distances.
@@ -190,8 +191,8 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
       lookup(&Return::to_not_free);
     }
   };
-  const std::size_t parts =
-      std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1, std::max<std::size_t>(1, blocks.size()));
+  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
+                                                    std::max<std::size_t>(1, blocks.size()));
   std::vector<std::thread> workers;
   for (std::size_t t = 1; t < parts; ++t) {
     workers.emplace_back(
