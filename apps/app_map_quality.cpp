@@ -89,6 +89,15 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
   }
   const quality::LoopResidualStats residuals = quality::LoopResiduals(result.graph, loops);
   const bool suspect = total.Suspect(options);
+  nlohmann::json by_range = nlohmann::json::array();
+  for (int b = 0; b < quality::SelfCheckStats::kRangeBands; ++b) {
+    const auto ub = static_cast<std::size_t>(b);
+    nlohmann::json band = {{"returns", total.band_returns[ub]}, {"score", total.BandScore(b)}};
+    if (ub < quality::SelfCheckStats::kRangeBandEdges.size()) {
+      band["below_m"] = quality::SelfCheckStats::kRangeBandEdges[ub];
+    }
+    by_range.push_back(band);
+  }
   outcome.report = {{"score", total.Score()},
                     {"suspect", suspect},
                     {"suspect_below", options.suspect_below},
@@ -98,6 +107,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
                     {"scans", total.scans},
                     {"returns", total.returns},
                     {"returns_outside_map", total.outside},
+                    {"by_range", by_range},
                     {"maps", per_map},
                     {"loop_residuals",
                      {{"closures", residuals.closures},

@@ -23,6 +23,22 @@ double SelfCheckStats::MeanDistance() const {
   return returns > 0 ? distance_sum / static_cast<double>(returns) : 0.0;
 }
 
+double SelfCheckStats::BandScore(int b) const {
+  const auto n = band_returns[static_cast<std::size_t>(b)];
+  return n > 0 ? static_cast<double>(band_agreeing[static_cast<std::size_t>(b)]) /
+                     static_cast<double>(n)
+               : 1.0;
+}
+
+int SelfCheckStats::RangeBand(double range) {
+  int b = 0;
+  while (b < static_cast<int>(kRangeBandEdges.size()) &&
+         range >= kRangeBandEdges[static_cast<std::size_t>(b)]) {
+    ++b;
+  }
+  return b;
+}
+
 bool SelfCheckStats::Suspect(const SelfCheckOptions& options) const {
   return Score() < options.suspect_below;
 }
@@ -34,6 +50,10 @@ void SelfCheckStats::Merge(const SelfCheckStats& other) {
   contradicting += other.contradicting;
   outside += other.outside;
   distance_sum += other.distance_sum;
+  for (std::size_t b = 0; b < band_returns.size(); ++b) {
+    band_returns[b] += other.band_returns[b];
+    band_agreeing[b] += other.band_agreeing[b];
+  }
 }
 
 namespace {
@@ -46,6 +66,7 @@ constexpr int kBlockTiles = 4;  ///< Distances are computed in blocks of 4 x 4 t
 struct Return {
   int i = 0;
   int j = 0;
+  int band = 0;              ///< SelfCheckStats::RangeBand of its range.
   float to_occupied = 0.0F;  ///< Distance to the nearest occupied cell [m], +inf beyond the clamp.
   float to_not_free = 0.0F;  ///< Distance to the nearest cell that is not free [m], idem.
 };
@@ -123,7 +144,8 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
         ++stats.outside;
         continue;
       }
-      returns.push_back({cell.x(), cell.y()});
+      returns.push_back(
+          {cell.x(), cell.y(), SelfCheckStats::RangeBand((q - points.origin).norm())});
       result.returns_per_cell.Mutable(cell) += 1.0F;
     }
   }
@@ -207,10 +229,12 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
   const double agree = options.agreement_distance + 1e-6;
   for (const Return& r : returns) {
     ++stats.returns;
+    ++stats.band_returns[static_cast<std::size_t>(r.band)];
     const double d = r.to_occupied;
     stats.distance_sum += std::min(d, options.distance_clamp);
     if (d <= agree) {
       ++stats.agreeing;
+      ++stats.band_agreeing[static_cast<std::size_t>(r.band)];
     } else {
       result.disagreeing_per_cell.Mutable(r.i, r.j) += 1.0F;
     }

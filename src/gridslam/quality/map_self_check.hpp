@@ -9,6 +9,7 @@
 // Measure for Map Consistency in SLAM", ICRA 2014.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "gridslam/fusion/global_grid.hpp"
@@ -26,6 +27,12 @@ struct SelfCheckStats {
   long contradicting = 0;     ///< Returns with only free cells within agreement_distance.
   long outside = 0;           ///< Returns outside the map's limits (not counted in `returns`).
   double distance_sum = 0.0;  ///< Sum of the clamped distances to the nearest occupied cell [m].
+  /// Returns and agreeing returns by range band (kRangeBands: up to 5, 10, 20 m and beyond): a
+  /// diagnostic of where in the scans the disagreement lies (report.json quality.by_range).
+  static constexpr std::array<double, 3> kRangeBandEdges = {5.0, 10.0, 20.0};
+  static constexpr int kRangeBands = 4;
+  std::array<long, kRangeBands> band_returns{};
+  std::array<long, kRangeBands> band_agreeing{};
 
   /// Share of agreeing returns, 1 when there is no return [-].
   [[nodiscard]] double Score() const;
@@ -33,6 +40,10 @@ struct SelfCheckStats {
   [[nodiscard]] double Contradiction() const;
   /// Mean clamped distance of a return to the nearest occupied cell [m].
   [[nodiscard]] double MeanDistance() const;
+  /// Share of agreeing returns in range band `b`, 1 when it has none [-].
+  [[nodiscard]] double BandScore(int b) const;
+  /// The band of a return at `range` [m].
+  [[nodiscard]] static int RangeBand(double range);
   /// Score() below options.suspect_below.
   [[nodiscard]] bool Suspect(const SelfCheckOptions& options) const;
   /// Adds another map's counts.

@@ -117,6 +117,27 @@ TEST(MapSelfCheck, TheScoreFallsAsTheErrorGrows) {
   }
 }
 
+TEST(MapSelfCheck, RangeBandsPartitionTheReturns) {
+  // The room is 12 m x 6 m: its returns lie within 5 m or between 5 and 13 m, none beyond 20 m.
+  const SelfCheckResult r = Check(MakeRun(0.0, 0.0));
+  long returns = 0;
+  long agreeing = 0;
+  for (int b = 0; b < SelfCheckStats::kRangeBands; ++b) {
+    returns += r.stats.band_returns[static_cast<std::size_t>(b)];
+    agreeing += r.stats.band_agreeing[static_cast<std::size_t>(b)];
+  }
+  EXPECT_EQ(returns, r.stats.returns);
+  EXPECT_EQ(agreeing, r.stats.agreeing);
+  EXPECT_GT(r.stats.band_returns[0], 0);
+  EXPECT_GT(r.stats.band_returns[1], 0);
+  EXPECT_EQ(r.stats.band_returns[3], 0);
+  EXPECT_DOUBLE_EQ(r.stats.BandScore(3), 1.0);
+  EXPECT_GT(r.stats.BandScore(0), 0.97);
+  EXPECT_EQ(SelfCheckStats::RangeBand(4.99), 0);
+  EXPECT_EQ(SelfCheckStats::RangeBand(5.0), 1);
+  EXPECT_EQ(SelfCheckStats::RangeBand(25.0), 3);
+}
+
 TEST(MapSelfCheck, SpacingSkipsScansOnTheCorrectedTrajectory) {
   const SimRun run = MakeRun(0.0, 0.0);
   const fusion::FusionOptions fusion;
