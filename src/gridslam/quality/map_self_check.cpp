@@ -31,12 +31,8 @@ double SelfCheckStats::BandScore(int b) const {
 }
 
 int SelfCheckStats::RangeBand(double range) {
-  int b = 0;
-  while (b < static_cast<int>(kRangeBandEdges.size()) &&
-         range >= kRangeBandEdges[static_cast<std::size_t>(b)]) {
-    ++b;
-  }
-  return b;
+  return static_cast<int>(std::upper_bound(kRangeBandEdges.begin(), kRangeBandEdges.end(), range) -
+                          kRangeBandEdges.begin());
 }
 
 bool SelfCheckStats::Suspect(const SelfCheckOptions& options) const {

@@ -30,7 +30,7 @@ struct SelfCheckStats {
   /// Returns and agreeing returns by range band (kRangeBands: up to 5, 10, 20 m and beyond): a
   /// diagnostic of where in the scans the disagreement lies (report.json quality.by_range).
   static constexpr std::array<double, 3> kRangeBandEdges = {5.0, 10.0, 20.0};
-  static constexpr int kRangeBands = 4;
+  static constexpr int kRangeBands = static_cast<int>(kRangeBandEdges.size()) + 1;
   std::array<long, kRangeBands> band_returns{};
   std::array<long, kRangeBands> band_agreeing{};
 
