@@ -61,7 +61,10 @@ nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
        {{"doubtful", s.odometry_doubtful},
         {"missing", s.odometry_missing},
         {"wide_searches", s.wide_searches},
-        {"overruled", s.odometry_overruled}}},
+        {"overruled", s.odometry_overruled},
+        {"poor_matches", s.poor_matches},
+        {"poor_rescued", s.poor_rescued},
+        {"poor_ambiguous", s.poor_ambiguous}}},
       {"insertions", s.insertions},
       {"key_maps", s.key_maps},
       {"distance_field", {{"rebuilds", s.field_rebuilds}, {"tile_updates", s.field_tile_updates}}}};

@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#define GRIDSLAM_LOG_TRACE(...) ::spdlog::trace(__VA_ARGS__)
 #define GRIDSLAM_LOG_DEBUG(...) ::spdlog::debug(__VA_ARGS__)
 #define GRIDSLAM_LOG_INFO(...) ::spdlog::info(__VA_ARGS__)
 #define GRIDSLAM_LOG_WARN(...) ::spdlog::warn(__VA_ARGS__)

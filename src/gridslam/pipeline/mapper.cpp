@@ -58,6 +58,9 @@ MapperStats Mapper::Impl::MergedStats() const {
   merged.odometry_missing = front_stats.odometry_missing;
   merged.odometry_overruled = front_stats.odometry_overruled;
   merged.wide_searches = front_stats.wide_searches;
+  merged.poor_matches = front_stats.poor_matches;
+  merged.poor_rescued = front_stats.poor_rescued;
+  merged.poor_ambiguous = front_stats.poor_ambiguous;
   merged.degenerate_one = front_stats.degenerate_one;
   merged.degenerate_both = front_stats.degenerate_both;
   merged.far_matches = front_stats.far_matches;
@@ -78,6 +81,9 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   fs.odometry_missing += step.odometry == scan_matching::OdometryCheck::kMissing ? 1 : 0;
   fs.odometry_overruled += step.odometry_overruled ? 1 : 0;
   fs.wide_searches += step.wide_search ? 1 : 0;
+  fs.poor_matches += step.poor_match ? 1 : 0;
+  fs.poor_rescued += step.rescue == scan_matching::RescueVerdict::kRescued ? 1 : 0;
+  fs.poor_ambiguous += step.rescue == scan_matching::RescueVerdict::kAmbiguous ? 1 : 0;
   if (step.status == scan_matching::FrameStatus::kMatched) {
     fs.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
     fs.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;

@@ -61,6 +61,9 @@ struct MapperStats {
   long odometry_overruled = 0;  ///< ... of which the scan match replaced the increment.
   long odometry_missing = 0;    ///< Frames without odometry (scan matching alone).
   long wide_searches = 0;       ///< Wide correlative searches of the front ends.
+  long poor_matches = 0;        ///< Matches with odometry found poor (front_end.hpp).
+  long poor_rescued = 0;        ///< ... of which a wide search overruled the odometry.
+  long poor_ambiguous = 0;      ///< ... of which the wide search found look-alike poses (kept).
   /// Matched frames whose scan left one / both translation directions to the prior.
   long degenerate_one = 0;
   long degenerate_both = 0;

@@ -1,5 +1,6 @@
 #include "gridslam/scan_matching/front_end.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -93,6 +94,7 @@ Status FrontEndOptions::Validate() const {
           wide_search.sigma > 0.0 && wide_search.max_points >= 3 && wide_search.candidates >= 1,
       "front_end.wide_search: windows >= 0, steps > 0, sigma > 0, max_points >= 3, "
       "candidates >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(poor_match.Validate());
   GRIDSLAM_RETURN_IF_ERROR(Require(max_correction_xy > 0.0 && max_correction_theta > 0.0,
                                    "front_end max corrections > 0"));
   return Status::Ok();
@@ -105,7 +107,8 @@ FrontEnd::FrontEnd(const FrontEndOptions& options)
       matching_field_(options.matcher.max_correspondence_distance),
       keymaps_(options.keymap),
       odometry_noise_(options.adaptive_window, options.adaptive_min_scale),
-      motion_check_(options.odometry_check) {
+      motion_check_(options.odometry_check),
+      score_monitor_(options.poor_match) {
   GRIDSLAM_CHECK(options.Validate().ok()) << options.Validate().error().ToString();
 }
 
@@ -223,6 +226,14 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
   if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
+  return WideSearch(points, centre, velocity_information, WindowPolicy::kNearFirst, false, best,
+                    step, nullptr);
+}
+
+MatchResult FrontEnd::WideSearch(const ScanPoints& points, const Pose2& centre,
+                                 const Eigen::Matrix3d& information, WindowPolicy policy,
+                                 bool usual, MatchResult best, FrontEndStep* step, bool* improved) {
+  const double good = options_.matcher.good_score;
   const WideSearchOptions& wide = options_.wide_search;
   SearchLattice lattice;
   lattice.linear_window = wide.linear_window;
@@ -231,23 +242,76 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
   lattice.angular_step = wide.angular_step;
   lattice.sigma = wide.sigma;
   lattice.max_points = static_cast<std::size_t>(wide.max_points);
-  const double res = field_.Limits().Resolution();
+  // The lattice is scored on the field of the first window the refinements use (the matching
+  // window's is up to date once a match has used it).
+  const bool far = policy == WindowPolicy::kMatchingWindow && matching_window_ != nullptr;
+  const MatchingField& field = far ? matching_field_ : field_;
+  const double res = field.Limits().Resolution();
   const std::vector<SearchResult> starts =
-      CorrelativeSearchTop(field_, points, centre, lattice, wide.candidates,
+      CorrelativeSearchTop(field, points, centre, lattice, wide.candidates,
                            2.0 * wide.linear_step * res, 2.0 * wide.angular_step);
   step->wide_search = true;
   ++stats_.wide_searches;
+  if (improved != nullptr) {
+    *improved = false;
+  }
+  const double separation_xy = 2.0 * wide.linear_step * res;
+  const double separation_theta = 2.0 * wide.angular_step;
+  std::vector<MatchResult> refinements;
   for (const SearchResult& start : starts) {
-    // The prior moves with the start: the constant-velocity guess is no better than the
-    // lattice pose the scan prefers. A pose far from both predictions must explain the scan
-    // well.
-    MatchResult refined =
-        MatchInWindows(points, start.T_odom_base, start.T_odom_base, velocity_information, kModel,
-                       true, WindowPolicy::kNearFirst);
-    if (refined.ok && refined.score >= good &&
-        (!best.ok || refined.score > best.score + kScoreMargin)) {
+    // The prior moves with the start: the prediction is no better than the lattice pose the
+    // scan prefers. A pose far from the prediction must explain the scan well.
+    MatchResult refined = MatchInWindows(points, start.T_odom_base, start.T_odom_base, information,
+                                         kModel, true, policy);
+    if (!refined.ok) {
+      continue;
+    }
+    if (usual) {
+      refinements.push_back(refined);
+      continue;
+    }
+    if (refined.score >= good && (!best.ok || refined.score > best.score + kScoreMargin)) {
       refined.searched = true;
       best = refined;
+      if (improved != nullptr) {
+        *improved = true;
+      }
+    }
+  }
+  if (!usual || refinements.empty()) {
+    return best;
+  }
+  // A pose that is to overrule the odometry must be unambiguous too: no other pose the search
+  // found (a look-alike along a corridor, in a hall of few returns) may explain the scan about
+  // as well.
+  std::vector<ScoredPose> candidates;
+  candidates.reserve(refinements.size());
+  for (const MatchResult& r : refinements) {
+    candidates.push_back({r.T_odom_base, r.score});
+  }
+  RescueRule rule;
+  rule.good_score = good;
+  rule.margin = kScoreMargin;
+  rule.separation_xy = separation_xy;
+  rule.separation_theta = separation_theta;
+  rule.window_xy = wide.linear_window;
+  rule.window_theta = wide.angular_window;
+  const RescueChoice choice =
+      score_monitor_.Choose(candidates, centre, best.ok ? best.score : -1.0, rule);
+  stats_.poor_ambiguous += choice.verdict == RescueVerdict::kAmbiguous ? 1 : 0;
+  step->rescue = choice.verdict;
+  if (choice.has_rival) {
+    const Pose2 d = Between(candidates[choice.best].pose, candidates[choice.rival].pose);
+    GRIDSLAM_LOG_DEBUG(
+        "poor match {:.2f}: wide search best {:.2f}, {}; rival {:.2f} at {:.3f} {:.3f} {:.3f}",
+        best.ok ? best.score : 0.0, candidates[choice.best].score, ToString(choice.verdict),
+        candidates[choice.rival].score, d.x(), d.y(), d.theta());
+  }
+  if (choice.verdict == RescueVerdict::kRescued) {
+    best = refinements[choice.best];
+    best.searched = true;
+    if (improved != nullptr) {
+      *improved = true;
     }
   }
   return best;
@@ -310,15 +374,29 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       stats_.seconds_field += SecondsSince(start);
       start = Clock::now();
       bool velocity_preferred = false;
+      bool rescued = false;
+      const Eigen::Matrix3d velocity_information = PriorInformation(
+          DefaultPriorSigmas(Between(last_estimate_, prediction.constant_velocity)),
+          prediction.constant_velocity, false);
       if (trusted) {
         step.match = MatchInWindows(points, predicted, predicted, prior_information,
                                     PriorKind::kMeasured, false, WindowPolicy::kMatchingWindow);
       } else {
-        const Eigen::Matrix3d velocity_information = PriorInformation(
-            DefaultPriorSigmas(Between(last_estimate_, prediction.constant_velocity)),
-            prediction.constant_velocity, false);
         step.match = MatchWithoutTrustedOdometry(points, prediction, velocity_information,
                                                  prior_information, &step, &velocity_preferred);
+      }
+      // A poor match with odometry: the prediction may be wrong although it looked plausible
+      // (odometry reporting forward motion while the robot reverses). The wide search around it
+      // may find a pose that explains the scan clearly better, and as well as the recent
+      // matches did; that pose overrules the odometry.
+      if (!missing && options_.poor_match.enabled && options_.wide_search.enabled &&
+          score_monitor_.Poor(step.match.ok ? step.match.score : 0.0)) {
+        step.poor_match = true;
+        ++stats_.poor_matches;
+        step.match = WideSearch(points, predicted, velocity_information,
+                                WindowPolicy::kMatchingWindow, true, step.match, &step, &rescued);
+        stats_.poor_rescued += rescued ? 1 : 0;
+        velocity_preferred = velocity_preferred && !rescued;
       }
       stats_.seconds_match += SecondsSince(start);
       stats_.searches += step.match.searched ? 1 : 0;
@@ -343,10 +421,10 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
                  std::max(options_.max_correction_xy,
                           std::sqrt(2.0) * options_.wide_search.linear_window),
                  std::max(options_.max_correction_theta, options_.wide_search.angular_window));
-      step.odometry_overruled = prediction.check == OdometryCheck::kDoubtful && step.match.ok &&
-                                !near_prediction && near_velocity;
+      step.odometry_overruled = rescued || (prediction.check == OdometryCheck::kDoubtful &&
+                                            step.match.ok && !near_prediction && near_velocity);
       stats_.odometry_overruled += step.odometry_overruled ? 1 : 0;
-      if (step.match.ok && (near_prediction || near_velocity)) {
+      if (step.match.ok && (near_prediction || near_velocity || rescued)) {
         pose = step.match.T_odom_base;
         step.covariance = step.match.covariance;
         step.status = FrameStatus::kMatched;
@@ -354,9 +432,10 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         stats_.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
         stats_.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;
         stats_.far_matches += step.match.far_window ? 1 : 0;
+        score_monitor_.Add(step.match.score);
         // A doubtful increment the scan did not overrule was matched with the odometry's prior:
         // its correction is a sample of the odometry's noise like any other.
-        if (trusted || (!missing && !step.odometry_overruled)) {
+        if (!missing && !step.odometry_overruled) {
           odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
                               defaults.theta);
         }
@@ -366,15 +445,22 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
         ++stats_.fallback_rejected;
       }
     }
-    if (prediction.check != OdometryCheck::kConsistent) {
+    // Every doubtful or missing increment at debug level, every frame at trace level.
+    if (prediction.check != OdometryCheck::kConsistent ||
+        spdlog::should_log(spdlog::level::trace)) {
       const Pose2 moved = Between(last_estimate_, pose);
-      GRIDSLAM_LOG_DEBUG(
+      const Pose2& odo = prediction.odometry_increment;
+      spdlog::log(
+          prediction.check != OdometryCheck::kConsistent ? spdlog::level::debug
+                                                         : spdlog::level::trace,
           "frame {}: odometry {} (innovation {:.3f} m {:.3f} rad, thresholds {:.3f} {:.3f}), "
-          "{}, {} score {:.2f}, moved {:.3f} {:.3f} {:.3f}",
+          "{}, {} score {:.2f} ({} degenerate), moved {:.3f} {:.3f} {:.3f}, odometry {:.3f} "
+          "{:.3f} {:.3f}",
           stats_.frames - 1, ToString(prediction.check), prediction.innovation_xy,
           prediction.innovation_theta, motion_check_.ThresholdXy(), motion_check_.ThresholdTheta(),
           step.odometry_overruled ? "overruled" : "kept", ToString(step.status), step.match.score,
-          moved.x(), moved.y(), moved.theta());
+          step.match.degeneracy.degenerate_directions, moved.x(), moved.y(), moved.theta(), odo.x(),
+          odo.y(), odo.theta());
     }
     motion_check_.Update(frame.corrected_time, odometry, pose, prediction, step.odometry_overruled);
   }

@@ -17,6 +17,7 @@
 #include "gridslam/keymap/key_map_builder.hpp"
 #include "gridslam/scan/laser_scan.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
+#include "gridslam/scan_matching/match_score_monitor.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
 #include "gridslam/scan_matching/motion_check.hpp"
 #include "gridslam/scan_matching/odometry_noise.hpp"
@@ -43,11 +44,15 @@ struct FrontEndStep {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< Of the match, if matched.
   FrameStatus status = FrameStatus::kFirst;
   OdometryCheck odometry = OdometryCheck::kConsistent;  ///< Verdict on the odometry increment.
-  bool wide_search = false;               ///< The wide search ran (doubtful or missing odometry).
-  bool odometry_overruled = false;        ///< The scan overruled a doubtful odometry increment.
-  MatchResult match;                      ///< Details of the match (if one was attempted).
-  bool inserted = false;                  ///< The scan was inserted into the local map.
-  std::optional<keymap::KeyMap> key_map;  ///< A key map finished after this frame.
+  bool wide_search = false;  ///< The wide search ran (doubtful or missing odometry).
+  /// The scan overruled the odometry increment: a doubtful one, or one whose match was poor and
+  /// whose wide search found a clearly better, unambiguous pose (`rescue`).
+  bool odometry_overruled = false;
+  bool poor_match = false;  ///< The match with odometry was poor (the wide search ran).
+  RescueVerdict rescue = RescueVerdict::kNone;  ///< What the wide search after it concluded.
+  MatchResult match;                            ///< Details of the match (if one was attempted).
+  bool inserted = false;                        ///< The scan was inserted into the local map.
+  std::optional<keymap::KeyMap> key_map;        ///< A key map finished after this frame.
 };
 
 /// Counters and time per stage [s] (steady clock).
@@ -61,7 +66,10 @@ struct FrontEndStats {
   long odometry_doubtful = 0;  ///< Increments the motion check found implausible.
   long odometry_missing = 0;   ///< Frames without odometry.
   long wide_searches = 0;
-  long odometry_overruled = 0;  ///< Doubtful increments the scan match replaced.
+  long odometry_overruled = 0;  ///< Increments the scan match replaced (doubtful or poor).
+  long poor_matches = 0;        ///< Matches with odometry found poor (wide search ran).
+  long poor_rescued = 0;        ///< ... of which the wide search overruled the odometry.
+  long poor_ambiguous = 0;      ///< ... of which a distinct pose scored about as well (kept).
   /// Matched frames whose scan left one / both translation directions to the prior.
   long degenerate_one = 0;
   long degenerate_both = 0;
@@ -142,6 +150,15 @@ class FrontEnd {
                                                         const Eigen::Matrix3d& odometry_information,
                                                         FrontEndStep* step,
                                                         bool* velocity_preferred);
+  /// The wide search around `centre` in the windows `policy` names: the lattice's maxima are
+  /// refined with `information` as the prior (kMotionModel, moved with each start), and the
+  /// best refinement replaces `best` if it scores at least good_score, clearly better than
+  /// `best`, and, when `usual`, as well as the recent matches usually do (score_monitor_);
+  /// `improved` (optional) tells.
+  [[nodiscard]] MatchResult WideSearch(const ScanPoints& points, const Pose2& centre,
+                                       const Eigen::Matrix3d& information, WindowPolicy policy,
+                                       bool usual, MatchResult best, FrontEndStep* step,
+                                       bool* improved);
 
   FrontEndOptions options_;
   ScanMatcher matcher_;
@@ -152,6 +169,7 @@ class FrontEnd {
   keymap::KeyMapBuilder keymaps_;
   OdometryNoiseEstimate odometry_noise_;
   MotionCheck motion_check_;
+  MatchScoreMonitor score_monitor_;  ///< Scores of the accepted matches.
   FrontEndStats stats_;
   Pose2 last_estimate_;     ///< Estimated pose of the previous frame.
   Pose2 last_insert_pose_;  ///< Pose of the last inserted scan.

@@ -5,15 +5,17 @@
 #include "gridslam/common/options.hpp"
 #include "gridslam/grid/local_map_options.hpp"
 #include "gridslam/keymap/key_map_builder.hpp"
+#include "gridslam/scan_matching/match_score_monitor.hpp"
 #include "gridslam/scan_matching/motion_check.hpp"
 #include "gridslam/scan_matching/scan_matcher_options.hpp"
 
 namespace gridslam::scan_matching {
 
 /// The wide search run when the odometry is missing and the constant velocity explains the scan
-/// poorly (correlative_search.hpp): a coarse lattice of +-linear_window, +-angular_window around
-/// the constant-velocity prediction; the best `candidates` distinct lattice poses are refined and
-/// the best-scoring refinement wins.
+/// poorly, or when a match with odometry is poor (poor_match below)
+/// (correlative_search.hpp): a coarse lattice of +-linear_window, +-angular_window around the
+/// prediction; the best `candidates` distinct lattice poses are refined and the best-scoring
+/// refinement wins if it explains the scan clearly better.
 struct WideSearchOptions {
   bool enabled = true;
   double linear_window = 1.0;      ///< Half-width in x and y [m].
@@ -64,6 +66,9 @@ struct FrontEndOptions {
   /// Plausibility of each odometry increment against the recent motion (motion_check.hpp).
   MotionCheckOptions odometry_check;
   WideSearchOptions wide_search;
+  /// When a match with odometry is poor against the recent matches, the wide search runs
+  /// around the odometry's prediction (match_score_monitor.hpp).
+  PoorMatchOptions poor_match;
   double max_correction_xy = 0.5;      ///< Larger corrections of the prediction are rejected [m].
   double max_correction_theta = 0.35;  ///< [rad]
 
@@ -91,6 +96,8 @@ struct FrontEndOptions {
               "Plausibility of each odometry increment against the recent motion");
     v.Section("wide_search", wide_search,
               "Wide correlative search when the odometry is doubtful or missing");
+    v.Section("poor_match", poor_match,
+              "Wide search when a match with odometry is poor against the recent ones");
     v("max_correction_xy", max_correction_xy,
       "Matches moving the prediction farther are rejected (odometry fallback) [m]");
     v("max_correction_theta", max_correction_theta, "... or turning it more [rad]");

@@ -239,6 +239,48 @@ TEST(FrontEnd, OdometryGlitchesAreCaughtAndMatchedAway) {
   EXPECT_LT(estimate_theta, DegToRad(0.5));
 }
 
+// The robot drives east, then reverses back west along the same line without turning, at 0.32 m
+// per frame (a low scan rate); the odometry reports the reversal as forward motion. The motion
+// check sees nothing wrong (the odometry goes on as before), but the scans no longer fit the map
+// at the odometry's prediction: the poor match triggers the wide search, whose pose overrules
+// the odometry.
+TEST(FrontEnd, OdometryThatMissesAReversalIsOverruledByThePoorMatch) {
+  std::vector<Pose2> truth;
+  for (double x = 1.0; x <= 9.3; x += 0.32) truth.emplace_back(x, 3.7, 0.0);
+  const double turn_x = truth.back().x();
+  for (double x = turn_x - 0.32; x >= 2.0; x -= 0.32) truth.emplace_back(x, 3.7, 0.0);
+  std::vector<Frame> frames = MakeFrames(truth);
+  // The odometry: every step forward, by its length.
+  Pose2 odometry = truth.front();
+  for (std::size_t k = 1; k < frames.size(); ++k) {
+    const Pose2 step = Between(truth[k - 1], truth[k]);
+    odometry = odometry * Pose2(std::abs(step.x()), step.y(), step.theta());
+    frames[k].T_odom_base = odometry;
+  }
+  auto run = [&](bool enabled) {
+    FrontEndOptions options;
+    options.poor_match.enabled = enabled;
+    options.poor_match.window = 15;  // the drive east has 26 frames
+    FrontEnd front_end(options);
+    Pose2 last;
+    for (const Frame& frame : frames) {
+      last = front_end.AddFrame(frame).T_odom_base;
+    }
+    return std::make_pair(front_end.Stats(), last);
+  };
+  const auto [off_stats, off_last] = run(false);
+  const auto [stats, last] = run(true);
+  // Without the check the estimate follows the odometry east; with it, the scans bring it back.
+  EXPECT_GT((off_last.translation() - truth.back().translation()).norm(), 2.0);
+  EXPECT_EQ(off_stats.poor_matches, 0);
+  EXPECT_LT((last.translation() - truth.back().translation()).norm(), 0.15);
+  EXPECT_LT(std::abs(NormalizeAngle(last.theta() - truth.back().theta())), 0.03);
+  EXPECT_GT(stats.poor_rescued, 0);
+  // Once overruled, the odometry stays doubtful until a match confirms it; it never does here.
+  EXPECT_EQ(off_stats.odometry_doubtful, 0);
+  EXPECT_GT(stats.odometry_overruled, static_cast<int>(frames.size()) / 3);
+}
+
 TEST(FrontEnd, WithoutOdometryTheScansAloneCarryTheEstimate) {
   const std::vector<Pose2> truth = DriveThroughTheWorld();
   std::vector<Frame> frames = MakeFrames(truth);

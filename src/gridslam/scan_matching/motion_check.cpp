@@ -53,6 +53,7 @@ void MotionCheck::Reset(Time time, const Pose2& odometry, const Pose2& estimate)
   motion_ = odometry;
   recent_.clear();
   recent_.push_back({time, motion_});
+  overruled_ = false;
 }
 
 double MotionCheck::ThresholdXy() const {
@@ -96,6 +97,9 @@ MotionPrediction MotionCheck::Predict(Time time, const std::optional<Pose2>& odo
              (prediction.innovation_xy > ThresholdXy() ||
               prediction.innovation_theta > ThresholdTheta())) {
     prediction.check = OdometryCheck::kDoubtful;
+  } else if (options_.enabled && overruled_) {
+    prediction.check = OdometryCheck::kDoubtful;
+    prediction.after_overrule = true;
   }
   return prediction;
 }
@@ -142,6 +146,7 @@ void MotionCheck::Update(Time time, const std::optional<Pose2>& odometry, const 
     last_odometry_ = *odometry;
   }
   last_estimate_ = estimate;
+  overruled_ = odometry_overruled && odometry.has_value();
 }
 
 }  // namespace gridslam::scan_matching

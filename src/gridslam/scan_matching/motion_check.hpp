@@ -26,8 +26,10 @@ namespace gridslam::scan_matching {
 /// What the check says of one odometry increment.
 enum class OdometryCheck {
   kConsistent,  ///< Agrees with the recent motion (or nothing to compare with yet).
-  kDoubtful,    ///< Implausible: a glitch, or a manoeuvre far beyond the recent dynamics.
-  kMissing,     ///< The frame has no odometry.
+  /// Implausible: a glitch, or a manoeuvre far beyond the recent dynamics; or the first
+  /// increment after the scan overruled the odometry (it must earn back its trust).
+  kDoubtful,
+  kMissing,  ///< The frame has no odometry.
 };
 
 const char* ToString(OdometryCheck check);
@@ -67,6 +69,10 @@ struct MotionPrediction {
   OdometryCheck check = OdometryCheck::kConsistent;
   double innovation_xy = 0.0;     ///< |odometry - constant velocity|, translation [m].
   double innovation_theta = 0.0;  ///< ... yaw [rad].
+  /// Doubtful only because the scan overruled the previous increment: odometry that missed a
+  /// reversal or a slip looks consistent with itself afterwards, so it stays doubtful until a
+  /// match confirms it.
+  bool after_overrule = false;
 };
 
 class MotionCheck {
@@ -108,6 +114,7 @@ class MotionCheck {
   std::size_t next_ = 0;
   double scale_xy_ = 0.0;
   double scale_theta_ = 0.0;
+  bool overruled_ = false;  ///< The scan overruled the last increment.
 };
 
 }  // namespace gridslam::scan_matching

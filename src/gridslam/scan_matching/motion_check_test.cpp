@@ -55,8 +55,18 @@ TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityHol
     EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
     // The velocity comes from the (noisy) odometry of the last second.
     EXPECT_TRUE(IsApprox(p.constant_velocity, truth_, 0.02, 0.01));
+    EXPECT_FALSE(p.after_overrule);
     check_.Update(At(t_), odometry_, truth_, p, /*odometry_overruled=*/true);
-    // The odometry carries on from the jumped pose: its next increments are fine again.
+    // The odometry carries on from the jumped pose. Its next increment is doubtful only for
+    // having been overruled; once a match confirms it, the following ones are fine again.
+    truth_ = truth_ * Pose2(0.1, 0.0, 0.02);
+    odometry_ = odometry_ * Pose2(0.1, 0.0, 0.02);
+    t_ += 0.2;
+    const MotionPrediction next = check_.Predict(At(t_), odometry_);
+    EXPECT_EQ(next.check, OdometryCheck::kDoubtful);
+    EXPECT_TRUE(next.after_overrule);
+    EXPECT_LT(next.innovation_xy, check_.ThresholdXy());
+    check_.Update(At(t_), odometry_, truth_, next, /*odometry_overruled=*/false);
     Drive(5);
   }
 }
