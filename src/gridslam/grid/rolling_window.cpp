@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <type_traits>
 
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
@@ -31,10 +29,10 @@ RollingWindow::RollingWindow(const LocalMapOptions& options, const Eigen::Vector
   const Eigen::Vector2d origin((std::floor(centre_odom.x() / res) - n / 2) * res,
                                (std::floor(centre_odom.y() / res) - n / 2) * res);
   const MapLimits limits(res, origin, n, n);
-  log_odds_ = Grid2D<float>(limits, kUnknownLogOdds);
-  obstacles_ = Grid2D<std::uint8_t>(limits, 0);
+  log_odds_ = RingGrid<float>(limits, kUnknownLogOdds);
+  obstacles_ = RingGrid<std::uint8_t>(limits, 0);
   if (track_surfaces_) {
-    surfaces_.assign(static_cast<std::size_t>(limits.NumCells()), CellSurface{});
+    surfaces_ = RingGrid<CellSurface>(limits, CellSurface{});
   }
   stamps_.assign(static_cast<std::size_t>(limits.NumCells()), 0);
 }
@@ -45,10 +43,9 @@ Eigen::Vector2d RollingWindow::Centre() const {
 }
 
 Eigen::Vector2d RollingWindow::MeanPoint(std::int32_t index) const {
-  const int w = Limits().Width();
-  const CellSurface& s = surfaces_[static_cast<std::size_t>(index)];
-  return Limits().CellCenter(Eigen::Array2i(index % w, index / w)) +
-         Eigen::Vector2d(s.mean_x, s.mean_y);
+  const auto storage = static_cast<std::size_t>(index);
+  const CellSurface& s = surfaces_.data()[storage];
+  return Limits().CellCenter(Layout().Cell(storage)) + Eigen::Vector2d(s.mean_x, s.mean_y);
 }
 
 Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
@@ -62,27 +59,29 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   if ((shift == 0).all()) {
     return shift;
   }
-  log_odds_.Shift(shift.x(), shift.y(), kUnknownLogOdds);
-  obstacles_.Shift(shift.x(), shift.y(), std::uint8_t{0});
-  if (track_surfaces_) {
-    ShiftCellsInPlace(surfaces_, Limits().Width(), Limits().Height(), shift.x(), shift.y(),
-                      CellSurface{});
-  }
-  // The stamps stay where they are: every one of them is older than the next scan's stamp, so
-  // they cannot collide with it wherever they now lie.
-  num_obstacles_ = std::count(obstacles_.Cells().begin(), obstacles_.Cells().end(), 1);
-  // Pending changes follow their cells; those that left are dropped.
-  const int w = Limits().Width();
-  const int h = Limits().Height();
+  // Pending changes keep their storage; those whose cells leave are dropped (read with the
+  // layout before the shift).
+  const RingLayout before = Layout();
   std::size_t kept = 0;
   for (const std::int32_t index : changed_) {
-    const int i = index % w - shift.x();
-    const int j = index / w - shift.y();
-    if (i >= 0 && j >= 0 && i < w && j < h) {
-      changed_[kept++] = j * w + i;
+    const Eigen::Array2i cell = before.Cell(static_cast<std::size_t>(index)) - shift;
+    if (Limits().Contains(cell)) {
+      changed_[kept++] = index;
     }
   }
   changed_.resize(kept);
+  // The obstacles that leave are those in the storage the entering cells take over.
+  const std::uint8_t* obstacles = obstacles_.data();
+  before.ForEachReplacedRun(shift.x(), shift.y(), [&](std::size_t index, std::size_t count) {
+    num_obstacles_ -= std::count(obstacles + index, obstacles + index + count, 1);
+  });
+  log_odds_.Shift(shift.x(), shift.y(), kUnknownLogOdds);
+  obstacles_.Shift(shift.x(), shift.y(), std::uint8_t{0});
+  if (track_surfaces_) {
+    surfaces_.Shift(shift.x(), shift.y(), CellSurface{});
+  }
+  // The stamps stay where they are: every one of them is older than the next scan's stamp, so
+  // they cannot collide with it wherever they now lie.
   pending_shift_ += shift;
   return shift;
 }
@@ -114,7 +113,7 @@ void RollingWindow::ApplyMiss(std::size_t index) {
     obstacle = 0;
     --num_obstacles_;
     if (track_surfaces_) {
-      surfaces_[index] = CellSurface{};
+      surfaces_.data()[index] = CellSurface{};
     }
     MarkChanged(index);
   }
@@ -131,9 +130,9 @@ void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d
   const Eigen::Array2i b = limits.CellIndex(clipped->second);
   // The end cell of a return is its hit cell; a ray cut at the border passes through its last cell.
   const bool include_end = !(to_is_hit && limits.Contains(limits.CellIndex(to)));
-  const auto w = static_cast<std::size_t>(limits.Width());
+  const RingLayout& layout = Layout();
   TraceLine(a, b, include_end, [&](int i, int j) {
-    const std::size_t index = static_cast<std::size_t>(j) * w + static_cast<std::size_t>(i);
+    const std::size_t index = layout.Index(i, j);
     if (stamps_[index] != stamp_) {
       stamps_[index] = stamp_;
       ApplyMiss(index);
@@ -164,7 +163,7 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
     if (!limits.Contains(cell)) {
       continue;
     }
-    const auto index = static_cast<std::size_t>(limits.LinearIndex(cell));
+    const std::size_t index = Layout().Index(cell);
     if (stamps_[index] != stamp_) {
       stamps_[index] = stamp_;
       ApplyHit(index);
@@ -172,7 +171,7 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
     if (!track_surfaces_) {
       continue;
     }
-    CellSurface& s = surfaces_[index];
+    CellSurface& s = surfaces_.data()[index];
     s.hits = std::min<std::uint16_t>(static_cast<std::uint16_t>(s.hits + 1), memory);
     const float a = 1.0F / static_cast<float>(s.hits);
     const Eigen::Vector2f local = (p - limits.CellCenter(cell)).cast<float>();
@@ -219,9 +218,7 @@ Grid2D<float> RollingWindow::SnapshotInCentreFrame(int num_cells) const {
   const int j0 = h / 2 - ch / 2;
   const Eigen::Vector2d origin = limits.Origin() + Eigen::Vector2d(i0, j0) * limits.Resolution();
   Grid2D<float> out(MapLimits(limits.Resolution(), origin - Centre(), cw, ch), kUnknownLogOdds);
-  for (int j = 0; j < ch; ++j) {
-    std::copy(&log_odds_(i0, j0 + j), &log_odds_(i0, j0 + j) + cw, &out(0, j));
-  }
+  log_odds_.CopyRegion(i0, j0, i0 + cw, j0 + ch, out.data());
   return out;
 }
 

@@ -9,7 +9,11 @@
 // clear only if enabled, up to a cap). Besides the log-odds, the window can keep for every cell
 // the running mean of the points that hit it and of their surface normals (sub-cell
 // point-to-line correspondences for the matcher), and it tracks which cells changed obstacle
-// status so a distance field over the obstacles can be updated incrementally.
+// status so a distance field over the obstacles can be updated incrementally. Every layer lies on
+// toroidal storage (RingGrid, one RingLayout for all): recentring rotates the view and clears the
+// entering strips instead of moving the whole window. Cell indices the window hands out or takes
+// (ChangedCells(), MeanPoint(), Surface(), the data() of its layers) are storage indices,
+// Layout().Index(i, j); logical cells are (i, j) in Limits().
 #pragma once
 
 #include <cmath>
@@ -21,6 +25,7 @@
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/grid/grid2d.hpp"
 #include "gridslam/grid/local_map_options.hpp"
+#include "gridslam/grid/ring_grid.hpp"
 #include "gridslam/grid/scan_points.hpp"
 
 namespace gridslam {
@@ -54,16 +59,21 @@ class RollingWindow {
   [[nodiscard]] const MapLimits& Limits() const { return log_odds_.Limits(); }
   /// Metric centre of the centre cell (the key-map frame's origin, docs/design.md §1.3).
   [[nodiscard]] Eigen::Vector2d Centre() const;
-  [[nodiscard]] const Grid2D<float>& LogOdds() const { return log_odds_; }
+  /// Where logical cell (i, j) lies in the storage of every layer.
+  [[nodiscard]] const RingLayout& Layout() const { return log_odds_.Layout(); }
+  [[nodiscard]] const RingGrid<float>& LogOdds() const { return log_odds_; }
   /// 1 where the cell is an obstacle (probability > occupied_probability), else 0.
-  [[nodiscard]] const Grid2D<std::uint8_t>& Obstacles() const { return obstacles_; }
-  /// Surface statistics of every cell, row-major like LogOdds(); null without track_surfaces.
+  [[nodiscard]] const RingGrid<std::uint8_t>& Obstacles() const { return obstacles_; }
+  /// Surface statistics of every cell, in the storage order of Layout(); null without
+  /// track_surfaces.
   [[nodiscard]] const CellSurface* Surfaces() const {
-    return surfaces_.empty() ? nullptr : surfaces_.data();
+    return surfaces_.size() == 0 ? nullptr : surfaces_.data();
   }
-  [[nodiscard]] const CellSurface& Surface(std::size_t index) const { return surfaces_[index]; }
+  [[nodiscard]] const CellSurface& Surface(std::size_t index) const {
+    return surfaces_.data()[index];
+  }
   [[nodiscard]] bool TracksSurfaces() const { return track_surfaces_; }
-  /// Mean hit point of cell `index` (linear) in the odometry frame [m].
+  /// Mean hit point of cell `index` (storage index) in the odometry frame [m].
   [[nodiscard]] Eigen::Vector2d MeanPoint(std::int32_t index) const;
   [[nodiscard]] long NumObstacles() const { return num_obstacles_; }
   [[nodiscard]] long NumInsertedScans() const { return num_scans_; }
@@ -75,7 +85,7 @@ class RollingWindow {
   /// Inserts `scan` (points in the base frame) seen from the robot pose `T_odom_base`.
   void InsertScan(const Pose2& T_odom_base, const ScanPoints& scan);
 
-  /// Linear indices (current geometry) of cells whose obstacle status changed since the last
+  /// Storage indices of the cells whose obstacle status changed since the last
   /// ClearChanges(), and the accumulated shift over that time; `changes_overflow` if too many to
   /// list (then treat every cell as changed).
   [[nodiscard]] const std::vector<std::int32_t>& ChangedCells() const { return changed_; }
@@ -100,10 +110,12 @@ class RollingWindow {
   float min_ = 0.0F;
   float max_ = 0.0F;
   float occupied_ = 0.0F;
-  Grid2D<float> log_odds_;
-  Grid2D<std::uint8_t> obstacles_;
-  std::vector<CellSurface> surfaces_;  ///< Row-major; shifted in place (it is the largest).
-  std::vector<std::uint32_t> stamps_;  ///< Last scan that updated each cell.
+  RingGrid<float> log_odds_;
+  RingGrid<std::uint8_t> obstacles_;
+  RingGrid<CellSurface> surfaces_;  ///< Empty without track_surfaces.
+  /// Last scan that updated each cell, by storage index; never shifted (every stamp is older
+  /// than the next scan's, wherever it now lies).
+  std::vector<std::uint32_t> stamps_;
   std::uint32_t stamp_ = 0;
   long num_obstacles_ = 0;
   long num_scans_ = 0;

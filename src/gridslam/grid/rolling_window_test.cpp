@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -71,7 +72,7 @@ TEST(RollingWindow, InsertMarksTheWallAndClearsInFrontOfIt) {
   EXPECT_GT(window.NumObstacles(), 20);
   EXPECT_FALSE(window.ChangedCells().empty());
   // The mean hit point of a wall cell lies on the wall, and its normal is along x.
-  const auto index = static_cast<std::int32_t>(limits.LinearIndex(wall));
+  const auto index = static_cast<std::int32_t>(window.Layout().Index(wall));
   EXPECT_NEAR(window.MeanPoint(index).x(), 2.0, 1e-3);
   const CellSurface& s = window.Surface(static_cast<std::size_t>(index));
   EXPECT_NEAR(std::abs(s.normal_x) / s.Planarity(), 1.0, 1e-3);
@@ -132,7 +133,7 @@ TEST(RollingWindow, ShiftKeepsWorldCoordinatesAndForgetsLeavingCells) {
   EXPECT_EQ(window.LogOdds().at(window.Limits().CellIndex(free_point)), free_before);
   EXPECT_EQ(window.NumObstacles(), obstacles);  // the wall is still inside
   const auto index =
-      static_cast<std::int32_t>(window.Limits().LinearIndex(window.Limits().CellIndex(wall_point)));
+      static_cast<std::int32_t>(window.Layout().Index(window.Limits().CellIndex(wall_point)));
   EXPECT_NEAR(window.MeanPoint(index).x(), 2.02, 1e-3);
 
   // Move far enough for the wall to leave: its cells are forgotten; entering cells are unknown.
@@ -165,7 +166,93 @@ TEST(RollingWindow, MissesCanTurnAnObstacleBackToFree) {
   }
   EXPECT_EQ(window.Obstacles().at(cell), 0);
   EXPECT_FALSE(window.ChangedCells().empty());
-  EXPECT_EQ(window.Surface(static_cast<std::size_t>(window.Limits().LinearIndex(cell))).hits, 0);
+  EXPECT_EQ(window.Surface(window.Layout().Index(cell)).hits, 0);
+}
+
+// A scan of random returns in [0.5, 6] m all around (some beyond the window's edge).
+ScanPoints RandomScan(std::mt19937& rng) {
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi;
+  scan.angle_increment = 2.0 * std::numbers::pi / 120;
+  scan.range_min = 0.05;
+  scan.range_max = 20.0;
+  std::uniform_real_distribution<float> range(0.5F, 6.0F);
+  for (int k = 0; k < 120; ++k) {
+    scan.ranges.push_back(range(rng));
+  }
+  return ExtractScanPoints(scan, Pose2(), 30.0);
+}
+
+std::vector<Eigen::Array2i> LogicalChanges(const RollingWindow& window) {
+  std::vector<Eigen::Array2i> cells;
+  for (const std::int32_t index : window.ChangedCells()) {
+    cells.push_back(window.Layout().Cell(static_cast<std::size_t>(index)));
+  }
+  return cells;
+}
+
+// Every layer, read cell by cell in logical coordinates, is the same in both windows.
+void ExpectSameLogicalCells(const RollingWindow& a, const RollingWindow& b) {
+  ASSERT_EQ(a.Limits().Origin(), b.Limits().Origin());
+  ASSERT_EQ(a.NumObstacles(), b.NumObstacles());
+  long obstacles = 0;
+  for (int j = 0; j < a.Limits().Height(); ++j) {
+    for (int i = 0; i < a.Limits().Width(); ++i) {
+      ASSERT_EQ(a.LogOdds()(i, j), b.LogOdds()(i, j)) << "cell " << i << ", " << j;
+      ASSERT_EQ(a.Obstacles()(i, j), b.Obstacles()(i, j));
+      obstacles += a.Obstacles()(i, j);
+      const auto ia = static_cast<std::int32_t>(a.Layout().Index(i, j));
+      const auto ib = static_cast<std::int32_t>(b.Layout().Index(i, j));
+      const CellSurface& sa = a.Surface(static_cast<std::size_t>(ia));
+      const CellSurface& sb = b.Surface(static_cast<std::size_t>(ib));
+      ASSERT_EQ(sa.hits, sb.hits);
+      ASSERT_EQ(sa.mean_x, sb.mean_x);
+      ASSERT_EQ(sa.mean_y, sb.mean_y);
+      ASSERT_EQ(sa.normal_x, sb.normal_x);
+      ASSERT_EQ(sa.normal_y, sb.normal_y);
+      ASSERT_EQ(a.MeanPoint(ia), b.MeanPoint(ib));
+    }
+  }
+  ASSERT_EQ(obstacles, a.NumObstacles());
+  const std::vector<Eigen::Array2i> ca = LogicalChanges(a);
+  const std::vector<Eigen::Array2i> cb = LogicalChanges(b);
+  ASSERT_EQ(ca.size(), cb.size());
+  for (std::size_t k = 0; k < ca.size(); ++k) {
+    ASSERT_TRUE((ca[k] == cb[k]).all());
+  }
+  ASSERT_EQ(a.SnapshotInCentreFrame(41).Cells(), b.SnapshotInCentreFrame(41).Cells());
+}
+
+// The window's storage rotates as it recentres (RingGrid): two windows over the same cells whose
+// storage is rotated differently must agree cell by cell after many random scans and shifts. A
+// power-of-two resolution keeps the origins exact, so both see the same geometry.
+TEST(RollingWindow, StorageRotationDoesNotChangeTheCells) {
+  LocalMapOptions options = SmallWindow();
+  options.resolution = 0.0625;
+  RollingWindow a(options, Eigen::Vector2d(0.5, -0.25));
+  RollingWindow b(options, Eigen::Vector2d(3.5, -2.75));
+  ASSERT_TRUE((b.Recentre({0.5, -0.25}) != 0).all());
+  ASSERT_EQ(a.Limits().Origin(), b.Limits().Origin());
+  ASSERT_FALSE(a.Layout() == b.Layout());
+  a.ClearChanges();
+  b.ClearChanges();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> step(-0.3, 0.6);
+  Pose2 pose(0.5, -0.25, 0.0);
+  for (int k = 0; k < 60; ++k) {
+    pose = pose * Pose2(step(rng), 0.5 * step(rng), step(rng));
+    const Eigen::Array2i shift = a.Recentre(pose.translation());
+    ASSERT_TRUE((b.Recentre(pose.translation()) == shift).all());
+    const ScanPoints scan = RandomScan(rng);
+    a.InsertScan(pose, scan);
+    b.InsertScan(pose, scan);
+    ExpectSameLogicalCells(a, b);
+    if (k % 3 == 0) {
+      a.ClearChanges();
+      b.ClearChanges();
+    }
+  }
+  EXPECT_GT(a.NumObstacles(), 50);
 }
 
 }  // namespace

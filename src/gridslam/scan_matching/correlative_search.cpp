@@ -14,6 +14,7 @@ template <class Visit>
 long ScoreLattice(const MatchingField& field, const ScanPoints& scan, const Pose2& centre,
                   const SearchLattice& lattice, std::size_t* num_points, Visit&& visit) {
   const MapLimits& limits = field.Limits();
+  const RingLayout& layout = field.Layout();
   const double res = limits.Resolution();
   const int w = limits.Width();
   const int h = limits.Height();
@@ -60,8 +61,7 @@ long ScoreLattice(const MatchingField& field, const ScanPoints& scan, const Pose
           const int i = cell.x() + di;
           const int j = cell.y() + dj;
           if (i >= 0 && j >= 0 && i < w && j < h) {
-            sum += score_of(static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                            static_cast<std::size_t>(i));
+            sum += score_of(layout.Index(i, j));
           }
         }
         ++evaluated;

@@ -3,54 +3,40 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gridslam/grid/cell_shift.hpp"
-
 namespace gridslam::scan_matching {
-namespace {
 
-// Moves a row-major field by (di, dj) cells in place (new (i, j) = old (i + di, j + dj)); labels
-// are re-indexed by the constant offset of the shift. A label whose obstacle left the grid then
-// names a wrong cell, but such a cell lies within the truncation radius of the edge the obstacles
-// left by, which Update() recomputes right after, as it does the cells that entered.
-void ShiftField(distance_transform::SquaredDistanceField& field, std::vector<float>& distance,
-                float max_distance, int di, int dj) {
-  const int w = field.width;
-  const int h = field.height;
-  ShiftCellsInPlace(field.squared, w, h, di, dj, distance_transform::kInfinity);
-  ShiftCellsInPlace(field.nearest, w, h, di, dj, std::int32_t{-1});
-  ShiftCellsInPlace(distance, w, h, di, dj, max_distance);
-  const std::int32_t offset = dj * w + di;
-  for (std::int32_t& label : field.nearest) {
-    label = label < 0 ? label : label - offset;
-  }
-}
-
-}  // namespace
-
-void MatchingField::SetLimits(const MapLimits& limits) {
+void MatchingField::SetLimits(const MapLimits& limits, const RingLayout& layout) {
   limits_ = limits;
+  layout_ = layout;
   origin_x_ = limits.Origin().x();
   origin_y_ = limits.Origin().y();
   inv_resolution_ = 1.0 / limits.Resolution();
 }
 
 void MatchingField::Rebuild(const RollingWindow& window) {
-  SetLimits(window.Limits());
-  const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
-  distance_transform::SquaredEuclideanDistanceTransform(window.Obstacles().data(), limits_.Width(),
-                                                        limits_.Height(), field_, true, max_cells);
-  distance_.resize(field_.squared.size());
-  const auto res = static_cast<float>(limits_.Resolution());
-  const auto max_d = static_cast<float>(max_distance_);
-  for (std::size_t k = 0; k < distance_.size(); ++k) {
-    distance_[k] = std::min(max_d, std::sqrt(field_.squared[k]) * res);
-  }
+  SetLimits(window.Limits(), window.Layout());
+  const auto n = static_cast<std::size_t>(limits_.NumCells());
+  field_.width = limits_.Width();
+  field_.height = limits_.Height();
+  field_.squared.resize(n);
+  field_.nearest.resize(n);
+  distance_.resize(n);
+  ComputeRegion(window, 0, 0, limits_.Width(), limits_.Height());
   valid_ = true;
   ++num_rebuilds_;
 }
 
 void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1) {
-  // Sources within the truncation radius of the region; outside them nothing can be nearer.
+  if (i0 >= i1 || j0 >= j1) {
+    return;
+  }
+  ComputeRegion(window, i0, j0, i1, j1);
+  ++num_tile_updates_;
+}
+
+void MatchingField::ComputeRegion(const RollingWindow& window, int i0, int j0, int i1, int j1) {
+  // Sources within the truncation radius of the region; outside them nothing can be nearer. They
+  // are copied out in logical order: the transform must not see the storage's wrap-around.
   const int w = limits_.Width();
   const int h = limits_.Height();
   const int r = static_cast<int>(std::ceil(max_distance_ / limits_.Resolution()));
@@ -60,35 +46,29 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
   const int sj1 = std::min(h, j1 + r);
   const int sw = si1 - si0;
   const int sh = sj1 - sj0;
-  if (i0 >= i1 || j0 >= j1) {
-    return;
-  }
   scratch_sources_.resize(static_cast<std::size_t>(sw) * static_cast<std::size_t>(sh));
-  const std::uint8_t* obstacles = window.Obstacles().data();
-  for (int j = sj0; j < sj1; ++j) {
-    std::copy(
-        obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si0,
-        obstacles + static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + si1,
-        scratch_sources_.data() + static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw));
-  }
+  window.Obstacles().CopyRegion(si0, sj0, si1, sj1, scratch_sources_.data());
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
   distance_transform::SquaredEuclideanDistanceTransform(scratch_sources_.data(), sw, sh,
                                                         scratch_field_, true, max_cells);
   const auto res = static_cast<float>(limits_.Resolution());
   const auto max_d = static_cast<float>(max_distance_);
   for (int j = j0; j < j1; ++j) {
+    const std::size_t row = static_cast<std::size_t>(layout_.Row(j)) * static_cast<std::size_t>(w);
+    int column = layout_.Column(i0);
     for (int i = i0; i < i1; ++i) {
       const std::size_t local = static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw) +
                                 static_cast<std::size_t>(i - si0);
-      const std::size_t global =
-          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t global = row + static_cast<std::size_t>(column);
+      column = column + 1 == w ? 0 : column + 1;
       const std::int32_t label = scratch_field_.nearest[local];
       field_.squared[global] = scratch_field_.squared[local];
       distance_[global] = std::min(max_d, std::sqrt(scratch_field_.squared[local]) * res);
-      field_.nearest[global] = label < 0 ? -1 : (sj0 + label / sw) * w + (si0 + label % sw);
+      field_.nearest[global] =
+          label < 0 ? -1
+                    : static_cast<std::int32_t>(layout_.Index(si0 + label % sw, sj0 + label / sw));
     }
   }
-  ++num_tile_updates_;
 }
 
 void MatchingField::Update(const RollingWindow& window) {
@@ -103,8 +83,18 @@ void MatchingField::Update(const RollingWindow& window) {
   }
   const int r = static_cast<int>(std::ceil(max_distance_ / limits.Resolution()));
   if ((shift != 0).any()) {
-    ShiftField(field_, distance_, static_cast<float>(max_distance_), shift.x(), shift.y());
-    SetLimits(limits);
+    // The window's storage did not move, nor does the field's: the view rotates with the
+    // window's. Labels are storage indices and need no re-indexing. A label whose obstacle left
+    // names the entering cell that took its storage, but such a cell lies within the truncation
+    // radius of the edge the obstacles left by, recomputed below with the cells that entered
+    // (which hold what the leaving cells held).
+    RingLayout layout = layout_;
+    layout.Shift(shift.x(), shift.y());
+    if (!(layout == window.Layout())) {  // not the window this field followed
+      Rebuild(window);
+      return;
+    }
+    SetLimits(limits, layout);
     // Cells within r of an edge where obstacles left, and the cells that entered.
     if (shift.x() > 0) {
       UpdateRegion(window, 0, 0, r, h);
@@ -135,8 +125,9 @@ void MatchingField::Update(const RollingWindow& window) {
     if (obstacles[index] != 0) {
       continue;
     }
-    const int i = index % w;
-    const int j = index / w;
+    const Eigen::Array2i c = layout_.Cell(static_cast<std::size_t>(index));
+    const int i = c.x();
+    const int j = c.y();
     const int i0 = std::max(0, i - r);
     const int j0 = std::max(0, j - r);
     const int i1 = std::min(w, i + r + 1);
@@ -166,16 +157,21 @@ void MatchingField::Update(const RollingWindow& window) {
     if (obstacles[index] == 0) {
       continue;
     }
-    const int i = index % w;
-    const int j = index / w;
+    const Eigen::Array2i c = layout_.Cell(static_cast<std::size_t>(index));
+    const int i = c.x();
+    const int j = c.y();
+    const int di0 = std::max(-r, -i);
     for (int dj = std::max(-r, -j); dj <= std::min(r, h - 1 - j); ++dj) {
-      for (int di = std::max(-r, -i); di <= std::min(r, w - 1 - i); ++di) {
+      const std::size_t row =
+          static_cast<std::size_t>(layout_.Row(j + dj)) * static_cast<std::size_t>(w);
+      int column = layout_.Column(i + di0);
+      for (int di = di0; di <= std::min(r, w - 1 - i);
+           ++di, column = column + 1 == w ? 0 : column + 1) {
         const auto sq = static_cast<float>(di * di + dj * dj);
         if (sq > max_squared) {
           continue;
         }
-        const std::size_t cell = static_cast<std::size_t>(j + dj) * static_cast<std::size_t>(w) +
-                                 static_cast<std::size_t>(i + di);
+        const std::size_t cell = row + static_cast<std::size_t>(column);
         if (sq < field_.squared[cell]) {
           field_.squared[cell] = sq;
           field_.nearest[cell] = index;

@@ -8,7 +8,10 @@
 // radius r of a cell whose obstacle status changed): a new obstacle is stamped into the disk of
 // radius r around it (brushfire), a removed one has the box of radius r around it recomputed with
 // the exact transform from the sources within 2r, and after a shift the strips whose neighbours
-// left are recomputed.
+// left are recomputed. The field lies on the window's toroidal storage (RingLayout): a shift
+// moves nothing, and every index it takes or returns (Nearest() labels included) is a storage
+// index of the window it follows, so Nearest() names the window's cell directly and stays valid
+// across shifts.
 #pragma once
 
 #include <cmath>
@@ -35,15 +38,17 @@ class MatchingField {
   void Rebuild(const RollingWindow& window);
 
   [[nodiscard]] const MapLimits& Limits() const { return limits_; }
+  /// Storage of logical cell (i, j): the window's layout at the last Update() or Rebuild().
+  [[nodiscard]] const RingLayout& Layout() const { return layout_; }
   [[nodiscard]] double MaxDistance() const { return max_distance_; }
-  /// Nearest obstacle (linear index) of the cell with linear index `index`; -1 if none within
-  /// MaxDistance().
+  /// Nearest obstacle (the window's storage index) of the cell with storage index `index`; -1 if
+  /// none within MaxDistance().
   [[nodiscard]] std::int32_t Nearest(std::size_t index) const { return field_.nearest[index]; }
   /// Squared distance to the nearest obstacle in cells^2 (+inf beyond MaxDistance()).
   [[nodiscard]] float SquaredDistanceCells(std::size_t index) const {
     return field_.squared[index];
   }
-  /// Distance to the nearest obstacle of the cell with linear index `index` [m], clamped at
+  /// Distance to the nearest obstacle of the cell with storage index `index` [m], clamped at
   /// MaxDistance().
   [[nodiscard]] float Distance(std::size_t index) const { return distance_[index]; }
   /// Distance to the nearest obstacle at `p` [m], bilinear between cell centres and clamped at
@@ -59,7 +64,8 @@ class MatchingField {
     const double fx = cx - fx0;
     const double fy = cy - fy0;
     const int w = limits_.Width();
-    if (i0 < 0 || j0 < 0 || i0 + 1 >= w || j0 + 1 >= limits_.Height()) {
+    const int h = limits_.Height();
+    if (i0 < 0 || j0 < 0 || i0 + 1 >= w || j0 + 1 >= h) {
       // Outside the window nothing is known: no distance, no gradient (a clamped value at the
       // border would pull points along walls that leave the window).
       if (gradient != nullptr) {
@@ -67,13 +73,19 @@ class MatchingField {
       }
       return max_distance_;
     }
-    const float* row = distance_.data() +
-                       static_cast<std::size_t>(j0) * static_cast<std::size_t>(w) +
-                       static_cast<std::size_t>(i0);
-    const double v00 = row[0];
-    const double v10 = row[1];
-    const double v01 = row[w];
-    const double v11 = row[w + 1];
+    // The four cells in storage: the next column or row may wrap around to storage 0.
+    const int c0 = layout_.Column(i0);
+    const int c1 = c0 + 1 == w ? 0 : c0 + 1;
+    const int r0 = layout_.Row(j0);
+    const int r1 = r0 + 1 == h ? 0 : r0 + 1;
+    const float* row0 =
+        distance_.data() + static_cast<std::size_t>(r0) * static_cast<std::size_t>(w);
+    const float* row1 =
+        distance_.data() + static_cast<std::size_t>(r1) * static_cast<std::size_t>(w);
+    const double v00 = row0[c0];
+    const double v10 = row0[c1];
+    const double v01 = row1[c0];
+    const double v11 = row1[c1];
     if (gradient != nullptr) {
       gradient->x() = ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) * inv_resolution_;
       gradient->y() = ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) * inv_resolution_;
@@ -87,10 +99,15 @@ class MatchingField {
 
  private:
   void UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
-  void SetLimits(const MapLimits& limits);
+  /// The exact transform of logical cells [i0, i1) x [j0, j1) from the sources within the
+  /// truncation radius around them, written to the storage.
+  void ComputeRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
+  void SetLimits(const MapLimits& limits, const RingLayout& layout);
 
   double max_distance_;
   MapLimits limits_;
+  RingLayout layout_;
+  /// Squared distances and nearest labels by storage index (its width and height are unused).
   distance_transform::SquaredDistanceField field_;
   std::vector<float> distance_;  ///< sqrt of field_.squared in metres, clamped at max_distance_.
   double origin_x_ = 0.0;

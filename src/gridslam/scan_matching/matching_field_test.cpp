@@ -37,8 +37,10 @@ void ExpectSameDistances(const MatchingField& incremental, const RollingWindow& 
     if (nearest >= 0) {
       // Any nearest obstacle at the same distance is fine.
       ASSERT_EQ(window.Obstacles().data()[nearest], 1);
-      const int di = static_cast<int>(k) % limits.Width() - nearest % limits.Width();
-      const int dj = static_cast<int>(k) / limits.Width() - nearest / limits.Width();
+      const Eigen::Array2i d =
+          window.Layout().Cell(index) - window.Layout().Cell(static_cast<std::size_t>(nearest));
+      const int di = d.x();
+      const int dj = d.y();
       ASSERT_EQ(static_cast<float>(di * di + dj * dj), full.SquaredDistanceCells(index));
     } else {
       ASSERT_EQ(full.Nearest(index), -1);

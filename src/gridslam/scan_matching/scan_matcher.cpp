@@ -83,6 +83,9 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
   const auto min_planarity = static_cast<float>(options_.min_planarity);
   GRIDSLAM_CHECK(!point_to_line_ || map.TracksSurfaces())
       << "the point_to_line residual needs a map that tracks surfaces";
+  // The field's storage indices (and labels) address the window's layers.
+  GRIDSLAM_CHECK(field.Layout() == map.Layout()) << "the field does not follow this window";
+  const RingLayout& layout = field.Layout();
   const CellSurface* surfaces = map.Surfaces();
 
   const Eigen::LDLT<Eigen::Matrix3d> prior_ldlt(prior_information);
@@ -111,8 +114,7 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
         if (ci < 0 || cj < 0 || ci >= w || cj >= h) {
           continue;
         }
-        const std::size_t index = static_cast<std::size_t>(cj) * static_cast<std::size_t>(w) +
-                                  static_cast<std::size_t>(ci);
+        const std::size_t index = layout.Index(ci, cj);
         if (point_to_line_) {
           const std::int32_t nearest = field.Nearest(index);
           if (nearest < 0) {
@@ -228,6 +230,8 @@ double ScanMatcher::Score(const RollingWindow& map, const MatchingField& field,
   const double inlier2 = options_.inlier_distance * options_.inlier_distance;
   const double max_corr2 =
       options_.max_correspondence_distance * options_.max_correspondence_distance;
+  GRIDSLAM_CHECK(field.Layout() == map.Layout()) << "the field does not follow this window";
+  const RingLayout& layout = field.Layout();
   const float* log_odds = map.LogOdds().data();
   int observed = 0;
   int inliers = 0;
@@ -238,7 +242,7 @@ double ScanMatcher::Score(const RollingWindow& map, const MatchingField& field,
     if (!limits.Contains(cell)) {
       continue;
     }
-    const auto index = static_cast<std::size_t>(limits.LinearIndex(cell));
+    const std::size_t index = layout.Index(cell);
     const std::int32_t nearest = field.Nearest(index);
     double e2 = std::numeric_limits<double>::infinity();
     if (nearest >= 0) {
