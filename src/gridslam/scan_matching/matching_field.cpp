@@ -15,26 +15,53 @@ void MatchingField::SetLimits(const MapLimits& limits, const RingLayout& layout)
 
 void MatchingField::Rebuild(const RollingWindow& window) {
   SetLimits(window.Limits(), window.Layout());
-  const auto n = static_cast<std::size_t>(limits_.NumCells());
-  field_.width = limits_.Width();
-  field_.height = limits_.Height();
-  field_.squared.resize(n);
-  field_.nearest.resize(n);
-  distance_.resize(n);
-  ComputeRegion(window, 0, 0, limits_.Width(), limits_.Height());
+  const int w = limits_.Width();
+  const int h = limits_.Height();
+  // The transform runs on the obstacles in logical order, straight into the field; the field is
+  // then rotated in place into the storage order (no second full-size field: this is rare).
+  scratch_sources_.resize(static_cast<std::size_t>(limits_.NumCells()));
+  window.Obstacles().CopyRegion(0, 0, w, h, scratch_sources_.data());
+  const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
+  distance_transform::SquaredEuclideanDistanceTransform(scratch_sources_.data(), w, h, field_, true,
+                                                        max_cells);
+  const auto res = static_cast<float>(limits_.Resolution());
+  const auto max_d = static_cast<float>(max_distance_);
+  distance_.resize(field_.squared.size());
+  for (std::size_t k = 0; k < distance_.size(); ++k) {
+    distance_[k] = std::min(max_d, std::sqrt(field_.squared[k]) * res);
+    const std::int32_t label = field_.nearest[k];
+    field_.nearest[k] =
+        label < 0 ? -1 : static_cast<std::int32_t>(layout_.Index(label % w, label / w));
+  }
+  RotateIntoStorage(field_.squared);
+  RotateIntoStorage(field_.nearest);
+  RotateIntoStorage(distance_);
   valid_ = true;
   ++num_rebuilds_;
+}
+
+template <typename T>
+void MatchingField::RotateIntoStorage(std::vector<T>& cells) const {
+  // Logical column i goes to storage column (i + offset_x) mod w, row j to (j + offset_y) mod h.
+  const auto w = static_cast<std::ptrdiff_t>(limits_.Width());
+  const auto h = static_cast<std::ptrdiff_t>(limits_.Height());
+  const std::ptrdiff_t ox = layout_.OffsetX();
+  const std::ptrdiff_t oy = layout_.OffsetY();
+  if (ox != 0) {
+    for (std::ptrdiff_t j = 0; j < h; ++j) {
+      const auto row = cells.begin() + j * w;
+      std::rotate(row, row + (w - ox), row + w);
+    }
+  }
+  if (oy != 0) {
+    std::rotate(cells.begin(), cells.begin() + (h - oy) * w, cells.end());
+  }
 }
 
 void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1) {
   if (i0 >= i1 || j0 >= j1) {
     return;
   }
-  ComputeRegion(window, i0, j0, i1, j1);
-  ++num_tile_updates_;
-}
-
-void MatchingField::ComputeRegion(const RollingWindow& window, int i0, int j0, int i1, int j1) {
   // Sources within the truncation radius of the region; outside them nothing can be nearer. They
   // are copied out in logical order: the transform must not see the storage's wrap-around.
   const int w = limits_.Width();
@@ -69,6 +96,7 @@ void MatchingField::ComputeRegion(const RollingWindow& window, int i0, int j0, i
                     : static_cast<std::int32_t>(layout_.Index(si0 + label % sw, sj0 + label / sw));
     }
   }
+  ++num_tile_updates_;
 }
 
 void MatchingField::Update(const RollingWindow& window) {

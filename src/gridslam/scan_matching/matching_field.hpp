@@ -98,11 +98,13 @@ class MatchingField {
   [[nodiscard]] long NumTileUpdates() const { return num_tile_updates_; }
 
  private:
-  void UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
   /// The exact transform of logical cells [i0, i1) x [j0, j1) from the sources within the
   /// truncation radius around them, written to the storage.
-  void ComputeRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
+  void UpdateRegion(const RollingWindow& window, int i0, int j0, int i1, int j1);
   void SetLimits(const MapLimits& limits, const RingLayout& layout);
+  /// Moves a field computed in logical row-major order into the storage order of layout_.
+  template <typename T>
+  void RotateIntoStorage(std::vector<T>& cells) const;
 
   double max_distance_;
   MapLimits limits_;
