@@ -5,6 +5,7 @@
 // returns, never for max-range readings).
 #pragma once
 
+#include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <utility>
@@ -12,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "gridslam/grid/map_limits.hpp"
+#include "gridslam/grid/ring_layout.hpp"
 
 namespace gridslam {
 
@@ -48,6 +50,53 @@ void TraceLine(const Eigen::Array2i& from, const Eigen::Array2i& to, bool includ
   }
   if (include_end) {
     visit(x, y);
+  }
+}
+
+/// TraceLine() on toroidal storage: calls visit(index) with the storage index
+/// (layout.Index(i, j)) of every cell TraceLine(from, to, include_end) visits, in the same order.
+/// The storage column and row follow the line's steps, so a cell costs no more than on row-major
+/// storage (no per-cell wrap arithmetic or multiplication).
+template <typename Visit>
+void TraceLineInRing(const RingLayout& layout, const Eigen::Array2i& from, const Eigen::Array2i& to,
+                     bool include_end, Visit&& visit) {
+  const int dx = std::abs(to.x() - from.x());
+  const int dy = -std::abs(to.y() - from.y());
+  const int sx = from.x() < to.x() ? 1 : -1;
+  const int sy = from.y() < to.y() ? 1 : -1;
+  // The line runs one way along each axis, so one comparison per step finds where it crosses the
+  // storage's seam. Every step advances the major axis once: max(dx, -dy) steps reach `to` (a
+  // counter, not the logical coordinates, keeps the loop within the registers).
+  const int w = layout.Width();
+  const auto area = static_cast<std::ptrdiff_t>(w) * layout.Height();
+  const int column_seam = sx > 0 ? w : -1;
+  const int column_wrap = sx > 0 ? -w : w;
+  const std::ptrdiff_t row_step = sy > 0 ? w : -w;
+  const std::ptrdiff_t row_seam = sy > 0 ? area : -static_cast<std::ptrdiff_t>(w);
+  const std::ptrdiff_t row_wrap = sy > 0 ? -area : area;
+  int column = layout.Column(from.x());
+  std::ptrdiff_t row_start = static_cast<std::ptrdiff_t>(layout.Row(from.y())) * w;
+  int err = dx + dy;
+  for (int n = std::max(dx, -dy); n > 0; --n) {
+    visit(static_cast<std::size_t>(row_start + column));
+    const int e2 = 2 * err;
+    if (e2 >= dy) {
+      err += dy;
+      column += sx;
+      if (column == column_seam) {
+        column += column_wrap;
+      }
+    }
+    if (e2 <= dx) {
+      err += dx;
+      row_start += row_step;
+      if (row_start == row_seam) {
+        row_start += row_wrap;
+      }
+    }
+  }
+  if (include_end) {
+    visit(static_cast<std::size_t>(row_start + column));
   }
 }
 

@@ -1,5 +1,6 @@
 #include "gridslam/grid/ray_casting.hpp"
 
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -46,6 +47,27 @@ TEST(ClipSegment, KeepsInsidePartsAndRejectsMisses) {
   EXPECT_TRUE(limits.Contains(limits.CellIndex(through->second)));
   EXPECT_FALSE(ClipSegment(limits, {-1.0, 2.0}, {2.0, 3.0}));
   EXPECT_FALSE(ClipSegment(limits, {1.5, 0.5}, {1.5, 0.9}));
+}
+
+TEST(TraceLineInRing, VisitsTheStorageOfTraceLinesCells) {
+  std::mt19937 rng(7);
+  const int w = 19;
+  const int h = 11;
+  std::uniform_int_distribution<int> column(0, w - 1);
+  std::uniform_int_distribution<int> row(0, h - 1);
+  for (int trial = 0; trial < 500; ++trial) {
+    RingLayout layout(w, h);
+    layout.Shift(column(rng), row(rng));
+    const Eigen::Array2i from(column(rng), row(rng));
+    const Eigen::Array2i to(column(rng), row(rng));
+    const bool include_end = trial % 2 == 0;
+    std::vector<std::size_t> expected;
+    TraceLine(from, to, include_end, [&](int i, int j) { expected.push_back(layout.Index(i, j)); });
+    std::vector<std::size_t> visited;
+    TraceLineInRing(layout, from, to, include_end,
+                    [&](std::size_t index) { visited.push_back(index); });
+    ASSERT_EQ(visited, expected) << "from " << from.transpose() << " to " << to.transpose();
+  }
 }
 
 }  // namespace
