@@ -83,6 +83,13 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
   // The stamps stay where they are: every one of them is older than the next scan's stamp, so
   // they cannot collide with it wherever they now lie.
   pending_shift_ += shift;
+  for (int a = 0; a < 2; ++a) {
+    const int sign = (shift[a] > 0) - (shift[a] < 0);
+    if (sign != 0) {
+      shift_reversed_ = shift_reversed_ || (shift_sign_[a] != 0 && shift_sign_[a] != sign);
+      shift_sign_[a] = sign;
+    }
+  }
   return shift;
 }
 
@@ -204,6 +211,8 @@ void RollingWindow::InsertScan(const Pose2& T_odom_base, const ScanPoints& scan)
 void RollingWindow::ClearChanges() {
   changed_.clear();
   pending_shift_.setZero();
+  shift_sign_.setZero();
+  shift_reversed_ = false;
   changes_overflow_ = false;
 }
 

@@ -91,6 +91,10 @@ class RollingWindow {
   [[nodiscard]] const std::vector<std::int32_t>& ChangedCells() const { return changed_; }
   [[nodiscard]] const Eigen::Array2i& PendingShift() const { return pending_shift_; }
   [[nodiscard]] bool ChangesOverflow() const { return changes_overflow_; }
+  /// The window moved back and forth along an axis since the last ClearChanges(): cells that
+  /// left and came back were cleared although the net shift does not cover them, so an
+  /// incremental follower must start afresh.
+  [[nodiscard]] bool ShiftReversed() const { return shift_reversed_; }
   void ClearChanges();
 
   /// The central `num_cells` x `num_cells` part (odd; 0 or more than the window = all of it) of
@@ -121,6 +125,8 @@ class RollingWindow {
   long num_scans_ = 0;
   std::vector<std::int32_t> changed_;
   Eigen::Array2i pending_shift_ = Eigen::Array2i::Zero();
+  Eigen::Array2i shift_sign_ = Eigen::Array2i::Zero();  ///< Of the shifts since ClearChanges.
+  bool shift_reversed_ = false;
   bool changes_overflow_ = false;
 };
 

@@ -144,6 +144,20 @@ TEST(RollingWindow, ShiftKeepsWorldCoordinatesAndForgetsLeavingCells) {
   }
 }
 
+TEST(RollingWindow, ReportsAShiftBackAndForthSinceTheLastClear) {
+  RollingWindow window(SmallWindow(), Eigen::Vector2d::Zero());
+  EXPECT_FALSE(window.ShiftReversed());
+  ASSERT_GT(window.Recentre({1.3, 0.0}).x(), 0);
+  ASSERT_GT(window.Recentre({2.6, 1.3}).x(), 0);  // onwards in x, and a first step in y
+  EXPECT_FALSE(window.ShiftReversed());
+  ASSERT_LT(window.Recentre({1.3, 1.3}).x(), 0);  // back in x
+  EXPECT_TRUE(window.ShiftReversed());
+  window.ClearChanges();
+  EXPECT_FALSE(window.ShiftReversed());
+  ASSERT_LT(window.Recentre({1.3, 0.0}).y(), 0);  // a first step since the clear
+  EXPECT_FALSE(window.ShiftReversed());
+}
+
 TEST(RollingWindow, SnapshotIsExpressedInTheCentreFrame) {
   RollingWindow window(SmallWindow(), Eigen::Vector2d(10.0, 5.0));
   window.InsertScan(Pose2(10.0, 5.0, 0.0), ExtractScanPoints(WallScan(2.0), Pose2(), 30.0));

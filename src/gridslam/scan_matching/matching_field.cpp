@@ -104,8 +104,8 @@ void MatchingField::Update(const RollingWindow& window) {
   const Eigen::Array2i shift = window.PendingShift();
   const int w = limits.Width();
   const int h = limits.Height();
-  if (!valid_ || window.ChangesOverflow() || w != limits_.Width() || h != limits_.Height() ||
-      std::abs(shift.x()) >= w / 2 || std::abs(shift.y()) >= h / 2) {
+  if (!valid_ || window.ChangesOverflow() || window.ShiftReversed() || w != limits_.Width() ||
+      h != limits_.Height() || std::abs(shift.x()) >= w / 2 || std::abs(shift.y()) >= h / 2) {
     Rebuild(window);
     return;
   }
