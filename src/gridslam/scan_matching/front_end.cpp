@@ -226,14 +226,20 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
   if ((best.ok && best.score >= good) || !options_.wide_search.enabled) {
     return best;
   }
-  return WideSearch(points, centre, velocity_information, WindowPolicy::kNearFirst, false, best,
-                    step, nullptr);
+  // A lattice pose replaces the match if it explains the scan well and clearly better.
+  const WideRefinements wide =
+      WideSearch(points, centre, velocity_information, WindowPolicy::kNearFirst, step);
+  for (const MatchResult& refined : wide.matches) {
+    if (refined.score >= good && (!best.ok || refined.score > best.score + kScoreMargin)) {
+      best = refined;
+    }
+  }
+  return best;
 }
 
-MatchResult FrontEnd::WideSearch(const ScanPoints& points, const Pose2& centre,
-                                 const Eigen::Matrix3d& information, WindowPolicy policy,
-                                 bool usual, MatchResult best, FrontEndStep* step, bool* improved) {
-  const double good = options_.matcher.good_score;
+FrontEnd::WideRefinements FrontEnd::WideSearch(const ScanPoints& points, const Pose2& centre,
+                                               const Eigen::Matrix3d& information,
+                                               WindowPolicy policy, FrontEndStep* step) {
   const WideSearchOptions& wide = options_.wide_search;
   SearchLattice lattice;
   lattice.linear_window = wide.linear_window;
@@ -246,75 +252,59 @@ MatchResult FrontEnd::WideSearch(const ScanPoints& points, const Pose2& centre,
   // window's is up to date once a match has used it).
   const bool far = policy == WindowPolicy::kMatchingWindow && matching_window_ != nullptr;
   const MatchingField& field = far ? matching_field_ : field_;
-  const double res = field.Limits().Resolution();
+  WideRefinements result;
+  result.separation_xy = 2.0 * wide.linear_step * field.Limits().Resolution();
+  result.separation_theta = 2.0 * wide.angular_step;
   const std::vector<SearchResult> starts =
-      CorrelativeSearchTop(field, points, centre, lattice, wide.candidates,
-                           2.0 * wide.linear_step * res, 2.0 * wide.angular_step);
+      CorrelativeSearchTop(field, points, centre, lattice, wide.candidates, result.separation_xy,
+                           result.separation_theta);
   step->wide_search = true;
   ++stats_.wide_searches;
-  if (improved != nullptr) {
-    *improved = false;
-  }
-  const double separation_xy = 2.0 * wide.linear_step * res;
-  const double separation_theta = 2.0 * wide.angular_step;
-  std::vector<MatchResult> refinements;
   for (const SearchResult& start : starts) {
     // The prior moves with the start: the prediction is no better than the lattice pose the
     // scan prefers. A pose far from the prediction must explain the scan well.
     MatchResult refined = MatchInWindows(points, start.T_odom_base, start.T_odom_base, information,
                                          kModel, true, policy);
-    if (!refined.ok) {
-      continue;
-    }
-    if (usual) {
-      refinements.push_back(refined);
-      continue;
-    }
-    if (refined.score >= good && (!best.ok || refined.score > best.score + kScoreMargin)) {
+    if (refined.ok) {
       refined.searched = true;
-      best = refined;
-      if (improved != nullptr) {
-        *improved = true;
-      }
+      result.matches.push_back(refined);
     }
   }
-  if (!usual || refinements.empty()) {
-    return best;
-  }
+  return result;
+}
+
+MatchResult FrontEnd::RescuePoorMatch(const ScanPoints& points, const Pose2& predicted,
+                                      const Eigen::Matrix3d& information, const MatchResult& poor,
+                                      FrontEndStep* step) {
+  const WideRefinements wide =
+      WideSearch(points, predicted, information, WindowPolicy::kMatchingWindow, step);
   // A pose that is to overrule the odometry must be unambiguous too: no other pose the search
   // found (a look-alike along a corridor, in a hall of few returns) may explain the scan about
   // as well.
   std::vector<ScoredPose> candidates;
-  candidates.reserve(refinements.size());
-  for (const MatchResult& r : refinements) {
+  candidates.reserve(wide.matches.size());
+  for (const MatchResult& r : wide.matches) {
     candidates.push_back({r.T_odom_base, r.score});
   }
   RescueRule rule;
-  rule.good_score = good;
+  rule.good_score = options_.matcher.good_score;
   rule.margin = kScoreMargin;
-  rule.separation_xy = separation_xy;
-  rule.separation_theta = separation_theta;
-  rule.window_xy = wide.linear_window;
-  rule.window_theta = wide.angular_window;
+  rule.separation_xy = wide.separation_xy;
+  rule.separation_theta = wide.separation_theta;
+  rule.window_xy = options_.wide_search.linear_window;
+  rule.window_theta = options_.wide_search.angular_window;
   const RescueChoice choice =
-      score_monitor_.Choose(candidates, centre, best.ok ? best.score : -1.0, rule);
+      score_monitor_.Choose(candidates, predicted, poor.ok ? poor.score : -1.0, rule);
   stats_.poor_ambiguous += choice.verdict == RescueVerdict::kAmbiguous ? 1 : 0;
   step->rescue = choice.verdict;
   if (choice.has_rival) {
     const Pose2 d = Between(candidates[choice.best].pose, candidates[choice.rival].pose);
     GRIDSLAM_LOG_DEBUG(
         "poor match {:.2f}: wide search best {:.2f}, {}; rival {:.2f} at {:.3f} {:.3f} {:.3f}",
-        best.ok ? best.score : 0.0, candidates[choice.best].score, ToString(choice.verdict),
+        poor.ok ? poor.score : 0.0, candidates[choice.best].score, ToString(choice.verdict),
         candidates[choice.rival].score, d.x(), d.y(), d.theta());
   }
-  if (choice.verdict == RescueVerdict::kRescued) {
-    best = refinements[choice.best];
-    best.searched = true;
-    if (improved != nullptr) {
-      *improved = true;
-    }
-  }
-  return best;
+  return choice.verdict == RescueVerdict::kRescued ? wide.matches[choice.best] : poor;
 }
 
 FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
@@ -393,8 +383,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
           score_monitor_.Poor(step.match.ok ? step.match.score : 0.0)) {
         step.poor_match = true;
         ++stats_.poor_matches;
-        step.match = WideSearch(points, predicted, velocity_information,
-                                WindowPolicy::kMatchingWindow, true, step.match, &step, &rescued);
+        step.match = RescuePoorMatch(points, predicted, velocity_information, step.match, &step);
+        rescued = step.rescue == RescueVerdict::kRescued;
         stats_.poor_rescued += rescued ? 1 : 0;
         velocity_preferred = velocity_preferred && !rescued;
       }

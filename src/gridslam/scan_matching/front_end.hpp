@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -150,15 +151,22 @@ class FrontEnd {
                                                         const Eigen::Matrix3d& odometry_information,
                                                         FrontEndStep* step,
                                                         bool* velocity_preferred);
-  /// The wide search around `centre` in the windows `policy` names: the lattice's maxima are
-  /// refined with `information` as the prior (kMotionModel, moved with each start), and the
-  /// best refinement replaces `best` if it scores at least good_score, clearly better than
-  /// `best`, and, when `usual`, as well as the recent matches usually do (score_monitor_);
-  /// `improved` (optional) tells.
-  [[nodiscard]] MatchResult WideSearch(const ScanPoints& points, const Pose2& centre,
-                                       const Eigen::Matrix3d& information, WindowPolicy policy,
-                                       bool usual, MatchResult best, FrontEndStep* step,
-                                       bool* improved);
+  /// The wide search around `centre` in the windows `policy` names: the lattice's maxima,
+  /// refined with `information` as the prior (kMotionModel, moved with each start); the
+  /// successful refinements, and the separation beyond which two poses are distinct.
+  struct WideRefinements {
+    std::vector<MatchResult> matches;
+    double separation_xy = 0.0;     ///< [m]
+    double separation_theta = 0.0;  ///< [rad]
+  };
+  [[nodiscard]] WideRefinements WideSearch(const ScanPoints& points, const Pose2& centre,
+                                           const Eigen::Matrix3d& information, WindowPolicy policy,
+                                           FrontEndStep* step);
+  /// After the `poor` match of a frame with odometry: the wide search around the odometry's
+  /// prediction, judged by MatchScoreMonitor::Choose (step->rescue); the rescued pose, or `poor`.
+  [[nodiscard]] MatchResult RescuePoorMatch(const ScanPoints& points, const Pose2& predicted,
+                                            const Eigen::Matrix3d& information,
+                                            const MatchResult& poor, FrontEndStep* step);
 
   FrontEndOptions options_;
   ScanMatcher matcher_;
