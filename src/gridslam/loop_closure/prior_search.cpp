@@ -2,14 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace gridslam::loop_closure {
 
 Status PriorSearchOptions::Validate() const {
-  GRIDSLAM_RETURN_IF_ERROR(Require(
-      window_per_m >= 0.0 && max_window_xy >= 0.0 && min_window_xy >= 0.0 && window_theta >= 0.0,
-      "prior_search windows >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(window_per_m >= 0.0 && max_window_xy >= 0.0 &&
+                                       min_window_xy >= 0.0 && window_theta >= 0.0 &&
+                                       window_theta_per_m >= 0.0 && max_window_theta >= 0.0,
+                                   "prior_search windows >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(linear_step > 0.0 && angular_step > 0.0, "prior_search steps > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(truncation > 0.0, "prior_search.truncation > 0"));
@@ -21,9 +23,304 @@ Status PriorSearchOptions::Validate() const {
                  "0 < prior_search.max_ambiguity <= 1");
 }
 
+namespace {
+
+// The lattice of poses a search scores: translations of `step` cells within +-half steps of the
+// prior's, and rotations of angular_step within the rotation window; b's points subsampled.
+struct SearchLattice {
+  int step = 1;
+  int half = 0;
+  int side = 1;
+  int angles = 1;
+  std::vector<Eigen::Vector2d> points;
+};
+
+SearchLattice MakeLattice(std::span<const Eigen::Vector2d> points_b, double resolution,
+                          double window_xy, double window_theta,
+                          const PriorSearchOptions& options) {
+  SearchLattice lattice;
+  lattice.step = std::max(1, static_cast<int>(std::lround(options.linear_step / resolution)));
+  lattice.half = static_cast<int>(std::floor(window_xy / (lattice.step * resolution)));
+  lattice.side = 2 * lattice.half + 1;
+  lattice.angles = 2 * static_cast<int>(std::floor(window_theta / options.angular_step)) + 1;
+  const std::size_t stride =
+      std::max<std::size_t>(1, points_b.size() / static_cast<std::size_t>(options.max_points));
+  for (std::size_t k = 0; k < points_b.size(); k += stride) {
+    lattice.points.push_back(points_b[k]);
+  }
+  return lattice;
+}
+
+// Branch and bound over the lattice (Hess et al., ICRA 2016, on the truncated score of
+// SearchAroundPrior): a node is a square block of 2^level x 2^level translations at one rotation;
+// its bound sums, over b's points, the largest cell score in the square the block's translations
+// move the point over (precomputed max pools), so a block whose bound does not beat the best
+// score so far holds no better pose. Leaves are scored exactly as the exhaustive search scores
+// them, in the same order of summation: the best score is the same number.
+class BranchAndBound {
+ public:
+  BranchAndBound(const Grid2D<float>& distance_a, const Pose2& prior, const SearchLattice& lattice,
+                 const PriorSearchOptions& options)
+      : lattice_(lattice),
+        width_(distance_a.Limits().Width()),
+        height_(distance_a.Limits().Height()) {
+    const MapLimits& limits = distance_a.Limits();
+    const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    const float* field = distance_a.data();
+    const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
+    score_.resize(cells);
+    for (std::size_t c = 0; c < cells; ++c) {
+      score_[c] = field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
+    }
+    while ((1 << levels_) < lattice.side) {
+      ++levels_;
+    }
+    BuildPools();
+    const std::size_t n = lattice.points.size();
+    cell_i_.resize(static_cast<std::size_t>(lattice.angles) * n);
+    cell_j_.resize(cell_i_.size());
+    for (int a = 0; a < lattice.angles; ++a) {
+      const double dtheta = (a - lattice.angles / 2) * options.angular_step;
+      const PointTransform T(prior * Pose2(0.0, 0.0, dtheta));
+      for (std::size_t k = 0; k < n; ++k) {
+        const Eigen::Vector2d c = limits.ToCellCoordinates(T(lattice.points[k]));
+        // The cell of the lattice's first translation (offset -half steps on both axes).
+        cell_i_[a * n + k] = static_cast<int>(std::floor(c.x())) - lattice.half * lattice.step;
+        cell_j_[a * n + k] = static_cast<int>(std::floor(c.y())) - lattice.half * lattice.step;
+      }
+    }
+  }
+
+  struct Best {
+    float score = 0.0F;
+    int a = 0;
+    int u = 0;
+    int v = 0;
+    bool found = false;
+  };
+
+  // The best pose scoring more than `threshold`, outside the disc of radius `exclusion` (lattice
+  // steps) around (eu, ev) when exclusion >= 0. `scored` counts the bounds and leaves evaluated.
+  Best Search(float threshold, int eu, int ev, double exclusion, long* scored) {
+    exclude_u_ = eu;
+    exclude_v_ = ev;
+    exclusion_ = exclusion;
+    Best best;
+    best.score = threshold;
+    std::vector<Node> roots;
+    for (int a = 0; a < lattice_.angles; ++a) {
+      roots.push_back(Node{a, levels_, 0, 0, 0.0F});
+    }
+    for (Node& root : roots) {
+      root.bound = Bound(root, scored);
+    }
+    Descend(roots, &best, scored);
+    return best;
+  }
+
+ private:
+  struct Node {
+    int a;
+    int level;
+    int u0;
+    int v0;
+    float bound;
+  };
+
+  // pools_[L - 1](i, j) = the largest score over cells [i, i + 2^L step) x [j, j + 2^L step).
+  void BuildPools() {
+    const int w = width_;
+    const int h = height_;
+    const auto at = [w](int i, int j) {
+      return static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+             static_cast<std::size_t>(i);
+    };
+    // Base: the square of one step.
+    std::vector<float> rows(score_.size());
+    std::vector<float> base(score_.size());
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) {
+        float m = 0.0F;
+        for (int d = 0; d < lattice_.step && i + d < w; ++d) {
+          m = std::max(m, score_[at(i + d, j)]);
+        }
+        rows[at(i, j)] = m;
+      }
+    }
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) {
+        float m = 0.0F;
+        for (int d = 0; d < lattice_.step && j + d < h; ++d) {
+          m = std::max(m, rows[at(i, j + d)]);
+        }
+        base[at(i, j)] = m;
+      }
+    }
+    const std::vector<float>* previous = &base;
+    pools_.reserve(static_cast<std::size_t>(levels_));
+    for (int level = 1; level <= levels_; ++level) {
+      const int shift = (1 << (level - 1)) * lattice_.step;
+      std::vector<float> pool(score_.size());
+      for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+          float m = (*previous)[at(i, j)];
+          if (i + shift < w) {
+            m = std::max(m, (*previous)[at(i + shift, j)]);
+          }
+          if (j + shift < h) {
+            m = std::max(m, (*previous)[at(i, j + shift)]);
+            if (i + shift < w) {
+              m = std::max(m, (*previous)[at(i + shift, j + shift)]);
+            }
+          }
+          pool[at(i, j)] = m;
+        }
+      }
+      pools_.push_back(std::move(pool));
+      previous = &pools_.back();
+    }
+  }
+
+  // Exact score of a leaf (level 0), or the bound of a block.
+  float Bound(const Node& node, long* scored) const {
+    ++*scored;
+    const std::size_t n = lattice_.points.size();
+    const int* ci = cell_i_.data() + static_cast<std::size_t>(node.a) * n;
+    const int* cj = cell_j_.data() + static_cast<std::size_t>(node.a) * n;
+    const int di = node.u0 * lattice_.step;
+    const int dj = node.v0 * lattice_.step;
+    const int w = width_;
+    const int h = height_;
+    float sum = 0.0F;
+    if (node.level == 0) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const int i = ci[k] + di;
+        const int j = cj[k] + dj;
+        if (i >= 0 && j >= 0 && i < w && j < h) {
+          sum += score_[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+                        static_cast<std::size_t>(i)];
+        }
+      }
+      return sum;
+    }
+    // The block moves a point over cells [i, i + 2^level step); a start left of (below) the
+    // grid is clipped to its first cell, whose pool covers the rest of the span.
+    const int span = (1 << node.level) * lattice_.step;
+    const std::vector<float>& pool = pools_[static_cast<std::size_t>(node.level - 1)];
+    for (std::size_t k = 0; k < n; ++k) {
+      const int i = ci[k] + di;
+      const int j = cj[k] + dj;
+      if (i >= w || j >= h || i + span <= 0 || j + span <= 0) {
+        continue;
+      }
+      sum += pool[static_cast<std::size_t>(std::max(j, 0)) * static_cast<std::size_t>(w) +
+                  static_cast<std::size_t>(std::max(i, 0))];
+    }
+    return sum;
+  }
+
+  // Whether every translation of the block lies within the exclusion disc.
+  [[nodiscard]] bool Excluded(const Node& node) const {
+    if (exclusion_ < 0.0) {
+      return false;
+    }
+    const int last = (1 << node.level) - 1;
+    const int du = std::max(std::abs(node.u0 - exclude_u_), std::abs(node.u0 + last - exclude_u_));
+    const int dv = std::max(std::abs(node.v0 - exclude_v_), std::abs(node.v0 + last - exclude_v_));
+    return std::hypot(du, dv) <= exclusion_;
+  }
+
+  void Descend(std::vector<Node>& nodes, Best* best, long* scored) {
+    std::sort(nodes.begin(), nodes.end(),
+              [](const Node& x, const Node& y) { return x.bound > y.bound; });
+    for (const Node& node : nodes) {
+      if (node.bound <= best->score) {
+        return;  // sorted: no later node can beat it either
+      }
+      if (node.level == 0) {
+        *best = Best{node.bound, node.a, node.u0, node.v0, true};
+        continue;
+      }
+      std::vector<Node> children;
+      const int half_size = 1 << (node.level - 1);
+      for (int dv = 0; dv < 2; ++dv) {
+        for (int du = 0; du < 2; ++du) {
+          Node child{node.a, node.level - 1, node.u0 + du * half_size, node.v0 + dv * half_size,
+                     0.0F};
+          if (child.u0 >= lattice_.side || child.v0 >= lattice_.side || Excluded(child)) {
+            continue;
+          }
+          child.bound = Bound(child, scored);
+          children.push_back(child);
+        }
+      }
+      Descend(children, best, scored);
+    }
+  }
+
+  const SearchLattice& lattice_;
+  int width_;
+  int height_;
+  int levels_ = 0;
+  std::vector<float> score_;
+  std::vector<std::vector<float>> pools_;
+  std::vector<int> cell_i_;
+  std::vector<int> cell_j_;
+  int exclude_u_ = 0;
+  int exclude_v_ = 0;
+  double exclusion_ = -1.0;
+};
+
+}  // namespace
+
+double PriorSearchOptions::WindowXy(double uncertainty_distance) const {
+  return std::min(max_window_xy, window_per_m * uncertainty_distance);
+}
+
+double PriorSearchOptions::WindowTheta(double uncertainty_distance) const {
+  return std::clamp(window_theta_per_m * uncertainty_distance, window_theta,
+                    std::max(window_theta, max_window_theta));
+}
+
 PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
                                     const Grid2D<float>& distance_a, const Pose2& prior,
-                                    double window_xy, const PriorSearchOptions& options) {
+                                    double window_xy, double window_theta,
+                                    const PriorSearchOptions& options) {
+  PriorSearchResult result;
+  result.T_a_b = prior;
+  if (points_b.empty() || distance_a.size() == 0) {
+    return result;
+  }
+  const double res = distance_a.Limits().Resolution();
+  const SearchLattice lattice = MakeLattice(points_b, res, window_xy, window_theta, options);
+  result.poses = static_cast<long>(lattice.angles) * lattice.side * lattice.side;
+  BranchAndBound search(distance_a, prior, lattice, options);
+  const auto n = static_cast<double>(lattice.points.size());
+  // Poses below min_score are no match: the search need not find them.
+  const float threshold = std::nextafter(static_cast<float>(options.min_score * n), 0.0F);
+  const BranchAndBound::Best best = search.Search(threshold, 0, 0, -1.0, &result.scored);
+  if (!best.found) {
+    return result;
+  }
+  result.score = static_cast<double>(best.score) / n;
+  const double distinct_cells = options.distinct_distance / (lattice.step * res);
+  const BranchAndBound::Best rival =
+      search.Search(static_cast<float>(options.max_ambiguity) * best.score, best.u, best.v,
+                    distinct_cells, &result.scored);
+  result.rival = rival.found ? static_cast<double>(rival.score) / n : 0.0;
+  const double dtheta = (best.a - lattice.angles / 2) * options.angular_step;
+  result.T_a_b = Pose2((best.u - lattice.half) * lattice.step * res,
+                       (best.v - lattice.half) * lattice.step * res, 0.0) *
+                 prior * Pose2(0.0, 0.0, dtheta);
+  result.ok =
+      result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
+  return result;
+}
+
+PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> points_b,
+                                              const Grid2D<float>& distance_a, const Pose2& prior,
+                                              double window_xy, double window_theta,
+                                              const PriorSearchOptions& options) {
   PriorSearchResult result;
   result.T_a_b = prior;
   if (points_b.empty() || distance_a.size() == 0) {
@@ -34,8 +331,7 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
   const int step = std::max(1, static_cast<int>(std::lround(options.linear_step / res)));
   const int half = static_cast<int>(std::floor(window_xy / (step * res)));
   const int side = 2 * half + 1;
-  const int angles =
-      2 * static_cast<int>(std::floor(options.window_theta / options.angular_step)) + 1;
+  const int angles = 2 * static_cast<int>(std::floor(window_theta / options.angular_step)) + 1;
   const std::size_t stride =
       std::max<std::size_t>(1, points_b.size() / static_cast<std::size_t>(options.max_points));
   std::vector<Eigen::Vector2d> points;
@@ -80,6 +376,7 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
     }
   }
   result.poses = static_cast<long>(scores.size());
+  result.scored = result.poses;
   const auto best = std::max_element(scores.begin(), scores.end());
   const auto index = static_cast<int>(best - scores.begin());
   const int best_a = index / (side * side);

@@ -10,6 +10,9 @@
 // seeds RefineOnDistanceField. Because the window is large, the search also reports how
 // distinct the best pose is: the best score among the poses farther than `distinct_distance`
 // from it, so that a corridor or a row of identical bays (many equally good poses) can be refused.
+// The windows grow with the uncertainty distance up to metres and tenths of a radian: the lattice
+// is searched by branch and bound (Hess et al., ICRA 2016) on max pools of the score, which finds
+// the exhaustive search's best score while scoring a small part of the lattice.
 #pragma once
 
 #include <span>
@@ -27,9 +30,13 @@ struct PriorSearchOptions {
   /// Half-width of the translation window: this fraction of the uncertainty distance between
   /// the key maps (graph path length, a drift rate) ... [m/m]
   double window_per_m = 0.02;
-  double max_window_xy = 3.0;   ///< ... capped here [m].
+  double max_window_xy = 10.0;  ///< ... capped here [m].
   double min_window_xy = 0.5;   ///< Smaller windows: the refinement alone is used [m].
-  double window_theta = 0.1;    ///< Half-width of the rotation window [rad].
+  /// Half-width of the rotation window: window_theta_per_m times the uncertainty distance (a
+  /// heading drift rate) [rad/m], at least window_theta [rad], at most max_window_theta [rad].
+  double window_theta_per_m = 0.0005;
+  double window_theta = 0.1;
+  double max_window_theta = 0.35;
   double linear_step = 0.2;     ///< Translation step of the grid (rounded to cells) [m].
   double angular_step = 0.035;  ///< Rotation step [rad].
   double truncation = 0.3;      ///< Distances beyond this score 0 [m].
@@ -49,7 +56,10 @@ struct PriorSearchOptions {
       "Translation half-window per metre of uncertainty distance (drift rate) [m/m]");
     v("max_window_xy", max_window_xy, "... capped here [m]");
     v("min_window_xy", min_window_xy, "Smaller windows: refine the prediction only [m]");
-    v("window_theta", window_theta, "Rotation half-window [rad]");
+    v("window_theta_per_m", window_theta_per_m,
+      "Rotation half-window per metre of uncertainty distance (heading drift rate) [rad/m]");
+    v("window_theta", window_theta, "Smallest rotation half-window [rad]");
+    v("max_window_theta", max_window_theta, "Largest rotation half-window [rad]");
     v("linear_step", linear_step, "Translation step of the search grid [m]");
     v("angular_step", angular_step, "Rotation step of the search grid [rad]");
     v("truncation", truncation, "Points farther than this from an obstacle score 0 [m]");
@@ -61,21 +71,35 @@ struct PriorSearchOptions {
       "Refused when the best rival scores more than this fraction of the best [-]");
   }
   [[nodiscard]] Status Validate() const;
+  /// The translation and rotation half-windows for an uncertainty distance [m] -> [m], [rad].
+  [[nodiscard]] double WindowXy(double uncertainty_distance) const;
+  [[nodiscard]] double WindowTheta(double uncertainty_distance) const;
 };
 
 struct PriorSearchResult {
   bool ok = false;     ///< Best score >= min_score and distinct enough.
   Pose2 T_a_b;         ///< Best pose of the grid.
-  double score = 0.0;  ///< Its score [-].
-  double rival = 0.0;  ///< Best score farther than distinct_distance from it [-].
-  long poses = 0;      ///< Poses scored.
+  double score = 0.0;  ///< Its score [-]; 0 when no pose reaches min_score.
+  /// Best score farther than distinct_distance from it [-] when that exceeds max_ambiguity times
+  /// the best (the search refuses), 0 otherwise (the search needs no more).
+  double rival = 0.0;
+  long poses = 0;   ///< Poses in the window's lattice.
+  long scored = 0;  ///< Bounds and poses evaluated.
 };
 
 /// Searches T_a_b (p_a = T_a_b * p_b) within +-window_xy [m] (translation of b's origin in a's
-/// frame) and +-options.window_theta (rotation about b's origin) of `prior`. `distance_a`: metres
+/// frame) and +-window_theta [rad] (rotation about b's origin) of `prior`. `distance_a`: metres
 /// to a's nearest obstacle, negative on unknown cells. Deterministic; thread-safe.
 PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
                                     const Grid2D<float>& distance_a, const Pose2& prior,
-                                    double window_xy, const PriorSearchOptions& options);
+                                    double window_xy, double window_theta,
+                                    const PriorSearchOptions& options);
+
+/// The same search scoring every pose of the lattice, with the exact rival (the reference of
+/// SearchAroundPrior's tests; its cost grows with the window's area times its rotations).
+PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> points_b,
+                                              const Grid2D<float>& distance_a, const Pose2& prior,
+                                              double window_xy, double window_theta,
+                                              const PriorSearchOptions& options);
 
 }  // namespace gridslam::loop_closure

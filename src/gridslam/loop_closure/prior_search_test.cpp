@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -63,7 +64,7 @@ TEST(PriorSearch, FindsATransformFarOutsideTheRefinementBasin) {
   // The prediction is 1.6 m and 3 degrees off.
   const Pose2 prior = Pose2(1.3, -0.9, 0.0) * T_a_b * Pose2(0.0, 0.0, -0.05);
   const PriorSearchOptions options;
-  const PriorSearchResult result = SearchAroundPrior(points_b, distance, prior, 2.5, options);
+  const PriorSearchResult result = SearchAroundPrior(points_b, distance, prior, 2.5, 0.1, options);
   ASSERT_TRUE(result.ok) << result.score << " " << result.rival;
   // The best pose of the grid is within half a step of the truth per axis ...
   EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(),
@@ -90,7 +91,7 @@ TEST(PriorSearch, RefusesAPoseTheWindowDoesNotHold) {
   const std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
   const Pose2 prior = Pose2(1.3, -0.9, 0.0) * T_a_b;
   const PriorSearchResult result =
-      SearchAroundPrior(points_b, distance, prior, 0.5, PriorSearchOptions{});
+      SearchAroundPrior(points_b, distance, prior, 0.5, 0.1, PriorSearchOptions{});
   EXPECT_FALSE(result.ok) << result.score;
 }
 
@@ -102,9 +103,56 @@ TEST(PriorSearch, RefusesACorridorAsAmbiguous) {
   // b saw only the middle part of the corridor.
   std::erase_if(points_b, [](const Eigen::Vector2d& p) { return std::abs(p.x()) > 3.0; });
   const PriorSearchResult result =
-      SearchAroundPrior(points_b, distance, Pose2(1.5, 0.0, 0.0), 2.5, PriorSearchOptions{});
+      SearchAroundPrior(points_b, distance, Pose2(1.5, 0.0, 0.0), 2.5, 0.1, PriorSearchOptions{});
   EXPECT_GT(result.score, 0.9);
   EXPECT_FALSE(result.ok) << result.score << " " << result.rival;
+}
+
+// Branch and bound finds the exhaustive search's best score to the last bit (its leaves sum the
+// same numbers in the same order), and the same verdict, over random predictions and windows up
+// to 8 m and 0.3 rad, in a room and in a corridor, while scoring a fraction of the lattice.
+TEST(PriorSearch, BranchAndBoundFindsTheExhaustiveBest) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> offset(-1.0, 1.0);
+  const PriorSearchOptions options;
+  long scored = 0;
+  long poses = 0;
+  int accepted = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const Grid2D<std::uint8_t> obstacles = trial % 3 == 2 ? Corridor() : Room();
+    const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+    const Pose2 T_a_b(0.5 * offset(random), 0.5 * offset(random), 0.3 * offset(random));
+    std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
+    const double keep = 2.0 + 3.0 * (offset(random) + 1.0);  // b saw part of a's area
+    std::erase_if(points_b, [keep](const Eigen::Vector2d& p) { return p.norm() > keep; });
+    const double window_xy = 1.0 + 3.5 * (offset(random) + 1.0);
+    const double window_theta = 0.05 + 0.125 * (offset(random) + 1.0);
+    const Pose2 prior = Pose2(window_xy * 0.7 * offset(random), window_xy * 0.7 * offset(random),
+                              window_theta * 0.7 * offset(random)) *
+                        T_a_b;
+    const PriorSearchResult fast =
+        SearchAroundPrior(points_b, distance, prior, window_xy, window_theta, options);
+    const PriorSearchResult exhaustive =
+        SearchAroundPriorExhaustive(points_b, distance, prior, window_xy, window_theta, options);
+    ASSERT_EQ(fast.poses, exhaustive.poses) << trial;
+    EXPECT_EQ(fast.ok, exhaustive.ok)
+        << trial << ": " << exhaustive.score << " " << exhaustive.rival;
+    if (exhaustive.score >= options.min_score) {
+      EXPECT_EQ(fast.score, exhaustive.score) << trial;
+    } else {
+      EXPECT_LT(fast.score, options.min_score) << trial;
+    }
+    if (exhaustive.ok) {
+      ++accepted;
+      EXPECT_TRUE(fast.T_a_b.translation().isApprox(exhaustive.T_a_b.translation(), 1e-9) &&
+                  std::abs(fast.T_a_b.theta() - exhaustive.T_a_b.theta()) < 1e-9)
+          << trial;
+    }
+    scored += fast.scored;
+    poses += fast.poses;
+  }
+  EXPECT_GE(accepted, 8);
+  EXPECT_LT(scored, poses / 4);
 }
 
 }  // namespace

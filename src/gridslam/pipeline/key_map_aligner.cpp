@@ -115,15 +115,19 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
   // After a long loop the prediction may be off by more than the refinement converges from.
   const loop_closure::PriorSearchOptions& search = options_.prior_search;
-  const double window = std::min(search.max_window_xy, search.window_per_m * uncertainty_distance);
+  const double window = search.WindowXy(uncertainty_distance);
   Pose2 start = T_i_k;
   bool searched = false;
   if (search.enabled && window > search.min_window_xy) {
     ++counters_.prior_searches;
-    const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
-        geometry_b.obstacle_points, geometry_a.distance, T_i_k, window, search);
-    GRIDSLAM_LOG_DEBUG("prior search {}-{}: window {:.2f} m, score {:.3f}, rival {:.3f}, {}", i, k,
-                       window, found.score, found.rival, found.ok ? "ok" : "refused");
+    const loop_closure::PriorSearchResult found =
+        loop_closure::SearchAroundPrior(geometry_b.obstacle_points, geometry_a.distance, T_i_k,
+                                        window, search.WindowTheta(uncertainty_distance), search);
+    GRIDSLAM_LOG_DEBUG(
+        "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
+        "poses scored, {}",
+        i, k, window, search.WindowTheta(uncertainty_distance), found.score, found.rival,
+        found.scored, found.poses, found.ok ? "ok" : "refused");
     if (!found.ok) {
       return std::nullopt;
     }
