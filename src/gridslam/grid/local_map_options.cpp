@@ -42,6 +42,8 @@ Status LocalMapOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(
       Require(no_return_clearing_range >= 0.0, "local_map.no_return_clearing_range >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(surface_memory >= 1, "local_map.surface_memory >= 1"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(std::isfinite(normal_angle_sigma) && normal_angle_sigma >= 0.0,
+                                   "local_map.normal_angle_sigma >= 0"));
   return Status::Ok();
 }
 

@@ -33,6 +33,15 @@ struct LocalMapOptions {
   /// Returns with no near neighbour that lie on the line through their neighbouring beams'
   /// returns get its normal (walls at grazing incidence, ExtractScanPoints).
   bool grazing_normals = true;
+  /// The largest standard error of a wall normal's direction [rad] (0 = none, the default): the
+  /// degeneracy test judges what the walls constrain on normals fitted to as many beams (up to 8
+  /// either side) as the scan's own measured noise needs for this. With noisy ranges and dense
+  /// beams a five-beam normal is too short a stretch of wall to be pinned, and its error passes
+  /// the distance gradient along a corridor's walls into the information, enough to hide the
+  /// corridor's degeneracy. 0.1 rad (sqrt(degenerate_fraction / 2)) fixes that for a noisy laser
+  /// but loses on sparse or cropped scans of cluttered rooms, so it is off (docs/front_end.md,
+  /// "Noisy lasers").
+  double normal_angle_sigma = 0.0;
 
   /// Number of cells along each side (odd, so the window has a centre cell).
   [[nodiscard]] int NumCells() const;
@@ -66,6 +75,9 @@ struct LocalMapOptions {
       "Number of recent hits averaged into a cell's mean hit point and surface normal");
     v("grazing_normals", grazing_normals,
       "Isolated returns on the line through their neighbours get its normal (grazing walls)");
+    v("normal_angle_sigma", normal_angle_sigma,
+      "Largest standard error of the wall normals the degeneracy test uses [rad]: they fit more "
+      "beams where the scan's measured noise demands it (0 = the five-beam normals)");
   }
   [[nodiscard]] Status Validate() const;
 };

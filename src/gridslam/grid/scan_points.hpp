@@ -20,10 +20,37 @@ struct ScanPoints {
   std::vector<Eigen::Vector2d> points;   ///< Returns (LaserScan::IsHit) in the base frame [m].
   std::vector<Eigen::Vector2d> normals;  ///< Unit normals in the base frame; zero if unknown.
   std::vector<float> normal_quality;     ///< 1 = clean line through the neighbours, 0 = unknown.
+  /// Normals whose direction the scan's noise leaves within NormalEstimation::max_angle_sigma:
+  /// fitted to more beams where five span too short a stretch of wall (empty unless asked for).
+  /// What a wall constrains; the five-beam normals are what the matcher's residuals use.
+  std::vector<Eigen::Vector2d> wall_normals;
+  std::vector<float> wall_normal_quality;
   std::vector<Eigen::Vector2d> no_return_directions;  ///< Unit directions of beams >= range_max.
+  /// The scatter of the returns about their surfaces as the normals' line fits measure it: the
+  /// median residual of the five-beam windows, unbiased for Gaussian noise [m] (0 when no
+  /// window had five hits).
+  double surface_noise = 0.0;
 
   [[nodiscard]] std::size_t size() const { return points.size(); }
 };
+
+/// How the normals of a scan's returns are estimated.
+struct NormalEstimation {
+  /// Neighbours farther than this from a return are not part of its window [m].
+  double neighbour_distance = 0.25;
+  /// Isolated returns on the line through their neighbours' returns get its normal.
+  bool grazing_normals = false;
+  /// Normals are fitted to the return and up to two hits on either side. With max_angle_sigma >
+  /// 0 [rad], the scan also gets wall_normals: where the scan's own noise (`surface_noise`) over
+  /// so short a stretch of wall leaves a normal's direction a standard error above
+  /// max_angle_sigma, its window grows to up to 8 beams on either side, within
+  /// neighbour_distance.
+  double max_angle_sigma = 0.0;
+};
+
+/// Converts `scan` with the laser mounting `T_base_laser`, normals as `normals` says.
+ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, double max_range,
+                             const NormalEstimation& normals);
 
 /// Converts `scan` with the laser mounting `T_base_laser`. Returns farther than `max_range` [m]
 /// are dropped (they count neither as hits nor as no-returns); readings that are not finite or at

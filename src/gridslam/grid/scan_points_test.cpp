@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,59 @@ TEST(ExtractScanPoints, GrazingWallsGetTheirNormalIsolatedObjectsDoNot) {
   ASSERT_EQ(with_pole.size(), 11U);
   EXPECT_LT(with_pole.normal_quality[5], 0.5F);
   EXPECT_GE(with_pole.normal_quality[4], 0.5F);
+}
+
+// A wall x = 1.2 m seen by 0.5 degree beams whose ranges carry noise of the beam spacing's
+// order (3 cm against 1 cm): five beams span 4 cm of wall, too little to pin a normal. The wall
+// normals' windows grow by the scan's own measured noise; the five-beam normals stay as they are,
+// and a scan without noise gets wall normals equal to them.
+LaserScan NoisyWall(double sigma, unsigned seed) {
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 3;
+  scan.angle_increment = std::numbers::pi / 360.0;
+  scan.range_min = 0.05;
+  scan.range_max = 20.0;
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (int k = 0; k <= 240; ++k) {
+    const double range = 1.2 / std::cos(scan.Angle(static_cast<std::size_t>(k)));
+    scan.ranges.push_back(static_cast<float>(range + noise(random)));
+  }
+  return scan;
+}
+
+double RmsNormalError(const std::vector<Eigen::Vector2d>& normals) {
+  double sum = 0.0;
+  for (const Eigen::Vector2d& normal : normals) {
+    const double error = std::asin(std::min(1.0, std::abs(normal.y())));  // the wall's is (1, 0)
+    sum += error * error;
+  }
+  return std::sqrt(sum / static_cast<double>(normals.size()));
+}
+
+TEST(ExtractScanPoints, WallNormalsFitMoreBeamsWhereTheMeasuredNoiseDemands) {
+  NormalEstimation five_beams;
+  NormalEstimation walls;
+  walls.max_angle_sigma = 0.1;
+  const LaserScan noisy = NoisyWall(0.03, 7);
+  const ScanPoints fixed = ExtractScanPoints(noisy, Pose2(), 30.0, five_beams);
+  const ScanPoints grown = ExtractScanPoints(noisy, Pose2(), 30.0, walls);
+  ASSERT_EQ(fixed.size(), 241U);
+  EXPECT_TRUE(fixed.wall_normals.empty());
+  ASSERT_EQ(grown.wall_normals.size(), 241U);
+  ASSERT_EQ(grown.wall_normal_quality.size(), 241U);
+  EXPECT_EQ(grown.normals, fixed.normals);
+  EXPECT_EQ(grown.normal_quality, fixed.normal_quality);
+  // The noise across the wall is the range noise times the cosine of the incidence (0.5-1).
+  EXPECT_GT(grown.surface_noise, 0.015);
+  EXPECT_LT(grown.surface_noise, 0.035);
+  EXPECT_GT(RmsNormalError(fixed.normals), 0.3);
+  EXPECT_LT(RmsNormalError(grown.wall_normals), 0.2);  // 8 beams either side at most
+
+  const ScanPoints clean = ExtractScanPoints(NoisyWall(0.001, 7), Pose2(), 30.0, walls);
+  EXPECT_LT(clean.surface_noise, 0.002);
+  EXPECT_EQ(clean.wall_normals, clean.normals);
+  EXPECT_EQ(clean.wall_normal_quality, clean.normal_quality);
 }
 
 }  // namespace

@@ -6,13 +6,20 @@ namespace gridslam::scan_matching {
 
 DegeneracyResult RemoveDegenerateDirections(double point_variance, double min_points,
                                             Eigen::Matrix3d* H, Eigen::Vector3d* g) {
+  const Eigen::Matrix3d information = *H;
+  return RemoveDegenerateDirections(point_variance, min_points, information, H, g);
+}
+
+DegeneracyResult RemoveDegenerateDirections(double point_variance, double min_points,
+                                            const Eigen::Matrix3d& information, Eigen::Matrix3d* H,
+                                            Eigen::Vector3d* g) {
   DegeneracyResult result;
   // Translation information once the yaw is free (Schur complement); without yaw information
   // (no lever arm at all) the translation block itself.
-  Eigen::Matrix2d translation = H->topLeftCorner<2, 2>();
-  const double yaw = (*H)(2, 2);
+  Eigen::Matrix2d translation = information.topLeftCorner<2, 2>();
+  const double yaw = information(2, 2);
   if (yaw > 0.0) {
-    const Eigen::Vector2d coupling = H->topRightCorner<2, 1>();
+    const Eigen::Vector2d coupling = information.topRightCorner<2, 1>();
     translation -= coupling * coupling.transpose() / yaw;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(

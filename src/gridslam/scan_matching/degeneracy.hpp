@@ -31,5 +31,10 @@ struct DegeneracyResult {
 /// disables the test. The yaw is never declared degenerate.
 DegeneracyResult RemoveDegenerateDirections(double point_variance, double min_points,
                                             Eigen::Matrix3d* H, Eigen::Vector3d* g);
+/// The same, with the directions measured on `information` (the scan's information as its wall
+/// normals give it, which noisy five-beam normals overstate along a wall) and removed from H, g.
+DegeneracyResult RemoveDegenerateDirections(double point_variance, double min_points,
+                                            const Eigen::Matrix3d& information, Eigen::Matrix3d* H,
+                                            Eigen::Vector3d* g);
 
 }  // namespace gridslam::scan_matching

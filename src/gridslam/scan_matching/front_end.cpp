@@ -312,9 +312,11 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   step.time = frame.time;
   ++stats_.frames;
   auto start = Clock::now();
+  NormalEstimation normals;
+  normals.grazing_normals = options_.local_map.grazing_normals;
+  normals.max_angle_sigma = options_.local_map.normal_angle_sigma;
   const ScanPoints points =
-      ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range, 0.25,
-                        options_.local_map.grazing_normals);
+      ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range, normals);
   stats_.seconds_preprocess += SecondsSince(start);
 
   const std::optional<Pose2> odometry =

@@ -19,6 +19,9 @@ namespace {
 struct LinearSystem {
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  /// H as the scan's wall normals (ScanPoints::wall_normals) project the gradients: what the
+  /// walls constrain, free of the leak of noisy five-beam normals (the degeneracy test's input).
+  Eigen::Matrix3d wall_information = Eigen::Matrix3d::Zero();
   int correspondences = 0;
 
   void Add(const Eigen::Vector3d& J, double r, double weight) {
@@ -91,6 +94,8 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
   const Eigen::LDLT<Eigen::Matrix3d> prior_ldlt(prior_information);
   const bool prior_positive = prior_ldlt.info() == Eigen::Success && prior_ldlt.isPositive() &&
                               prior_ldlt.vectorD().minCoeff() > 0.0;
+  const bool wall_normals = !point_to_line_ && scan.wall_normals.size() == scan.points.size() &&
+                            !scan.wall_normals.empty();
   Eigen::Vector3d x = start.ToVector();
   MatchResult result;
   LinearSystem system;
@@ -148,27 +153,38 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
             continue;
           }
           ++system.correspondences;
-          if (scan.normal_quality[k] >= min_planarity) {
-            // On a surface, only the gradient's component along the scan's own normal is
-            // information; the tangential part comes from the gaps that sparse or grazing
-            // returns leave in the map's walls and would pin the pose to them.
-            const double nx = c * scan.normals[k].x() - s * scan.normals[k].y();
-            const double ny = s * scan.normals[k].x() + c * scan.normals[k].y();
+          // On a surface, only the gradient's component along the scan's own normal is
+          // information; the tangential part comes from the gaps that sparse or grazing returns
+          // leave in the map's walls and would pin the pose to them.
+          const auto on_surface = [&](const Eigen::Vector2d& normal) {
+            const double nx = c * normal.x() - s * normal.y();
+            const double ny = s * normal.x() + c * normal.y();
             const double along = gradient.x() * nx + gradient.y() * ny;
-            gradient = Eigen::Vector2d(along * nx, along * ny);
+            return Eigen::Vector2d(along * nx, along * ny);
+          };
+          const Eigen::Vector2d used =
+              scan.normal_quality[k] >= min_planarity ? on_surface(scan.normals[k]) : gradient;
+          const double weight = inv_var * CauchyWeight(d, scale);
+          const Eigen::Vector3d J(used.x(), used.y(), -used.x() * dy + used.y() * dx);
+          system.Add(J, d, weight);
+          if (wall_normals) {
+            const Eigen::Vector2d wall = scan.wall_normal_quality[k] >= min_planarity
+                                             ? on_surface(scan.wall_normals[k])
+                                             : gradient;
+            const Eigen::Vector3d Jw(wall.x(), wall.y(), -wall.x() * dy + wall.y() * dx);
+            system.wall_information.noalias() += weight * Jw * Jw.transpose();
           }
-          const Eigen::Vector3d J(gradient.x(), gradient.y(),
-                                  -gradient.x() * dy + gradient.y() * dx);
-          system.Add(J, d, inv_var * CauchyWeight(d, scale));
         }
       }
       // Directions the scan hardly constrains (along a corridor) are the prior's alone when the
       // prior measures the motion; without a prior (zero information), or with a motion model
       // for one, nothing better than the scan's few points carries them.
       if (prior_positive && prior_kind == PriorKind::kMeasured) {
-        result.degeneracy = RemoveDegenerateDirections(
-            options_.point_sigma * options_.point_sigma,
-            options_.degenerate_fraction * system.correspondences, &system.H, &system.g);
+        const Eigen::Matrix3d information = wall_normals ? system.wall_information : system.H;
+        result.degeneracy =
+            RemoveDegenerateDirections(options_.point_sigma * options_.point_sigma,
+                                       options_.degenerate_fraction * system.correspondences,
+                                       information, &system.H, &system.g);
       }
       const Eigen::Vector3d prior_error(x.x() - prior.x(), x.y() - prior.y(),
                                         NormalizeAngle(x.z() - prior.theta()));
