@@ -80,8 +80,10 @@ struct PriorSearchResult {
   bool ok = false;     ///< Best score >= min_score and distinct enough.
   Pose2 T_a_b;         ///< Best pose of the grid.
   double score = 0.0;  ///< Its score [-]; 0 when no pose reaches min_score.
-  /// Best score farther than distinct_distance from it [-] when that exceeds max_ambiguity times
-  /// the best (the search refuses), 0 otherwise (the search needs no more).
+  /// Best score farther than distinct_distance from it [-]. Branch and bound finds it only when
+  /// it exceeds max_ambiguity times the best (the search refuses) and reports 0 otherwise (it
+  /// needs no more); the exhaustive search, which SearchAroundPrior runs for small windows,
+  /// reports it always.
   double rival = 0.0;
   long poses = 0;   ///< Poses in the window's lattice.
   long scored = 0;  ///< Bounds and poses evaluated.
