@@ -98,13 +98,18 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
   // Outside the gate: once enough recent gated closures agree with each other (the loops they
   // form with the graph close), the estimate is what was wrong, and they are accepted together
   // (docs/design.md §1.6: pairwise consistency of several closures).
+  // Matches of one key map are one piece of evidence (its scans): each counts once.
+  std::vector<int> evidence = {match.k};
   for (const Match& g : gated_) {
     if (g.k != match.k && match.k - g.k <= options_.gated_window &&
         Within(LoopError(match, g, graph), options_.pairwise_xy, options_.pairwise_theta)) {
       decision.accepted.push_back(g);
+      if (std::find(evidence.begin(), evidence.end(), g.k) == evidence.end()) {
+        evidence.push_back(g.k);
+      }
     }
   }
-  if (static_cast<int>(decision.accepted.size()) < options_.min_consistent_gated) {
+  if (static_cast<int>(evidence.size()) < options_.min_consistent_gated) {
     decision.verdict = Verdict::kWait;
     decision.accepted.resize(1);
     gated_.push_back(match);

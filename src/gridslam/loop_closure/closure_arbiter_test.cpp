@@ -120,6 +120,26 @@ TEST(ClosureArbiter, AcceptsAConsistentGroupOfGatedClosures) {
   EXPECT_TRUE(arbiter.gated().empty());
 }
 
+// Two matches of one key map (its scans against two older key maps) repeat one piece of
+// evidence: a look-alike seen from one key map is found from it twice. With a third key map's
+// match they are not yet three.
+TEST(ClosureArbiter, MatchesOfOneKeyMapCountOnceInAGatedGroup) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  LoopClosureOptions options;
+  ClosureArbiter arbiter(options);
+  ASSERT_EQ(options.min_consistent_gated, 3);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(2, 30), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(5, 30), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(8, 32), 2.0, false, line.graph).verdict,
+            Verdict::kWait);
+  const Decision d = arbiter.OfferPrior(line.Closure(9, 33), 2.0, false, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  EXPECT_EQ(d.accepted.size(), 4U);  // all consistent matches, both of key map 30 included
+  EXPECT_TRUE(arbiter.gated().empty());
+}
+
 TEST(ClosureArbiter, InconsistentGatedClosuresStayQueued) {
   const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
   ClosureArbiter arbiter{LoopClosureOptions{}};
