@@ -3,8 +3,8 @@
 // GraphView and answers with a Decision (the matches to turn into loop edges, if any). It holds
 // the three queues of closures that wait for support, each an explicit state:
 //   - gated: prior-based closures outside the consistency gate. Once min_consistent_gated
-//     recent ones form mutually consistent loops with the graph, the estimate was what was
-//     wrong, and they are accepted together;
+//     recent ones of as many distinct new key maps form mutually consistent loops with the
+//     graph, the estimate was what was wrong, and they are accepted together;
 //   - within_map: appearance matches inside one map component that disagree with the estimate
 //     (but not by more than max_correction); accepted with enough independent, consistent
 //     matches between the same two robots;
