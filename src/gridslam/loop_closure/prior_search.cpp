@@ -51,6 +51,15 @@ SearchLattice MakeLattice(std::span<const Eigen::Vector2d> points_b, double reso
   return lattice;
 }
 
+// Levels of max pools that cover a lattice side: the smallest L with 2^L >= side.
+int PoolLevels(int side) {
+  int levels = 0;
+  while ((1 << levels) < side) {
+    ++levels;
+  }
+  return levels;
+}
+
 // Branch and bound over the lattice (Hess et al., ICRA 2016, on the truncated score of
 // SearchAroundPrior): a node is a square block of 2^level x 2^level translations at one rotation;
 // its bound sums, over b's points, the largest cell score in the square the block's translations
@@ -72,9 +81,7 @@ class BranchAndBound {
     for (std::size_t c = 0; c < cells; ++c) {
       score_[c] = field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
     }
-    while ((1 << levels_) < lattice.side) {
-      ++levels_;
-    }
+    levels_ = PoolLevels(lattice.side);
     BuildPools();
     const std::size_t n = lattice.points.size();
     cell_i_.resize(static_cast<std::size_t>(lattice.angles) * n);
@@ -297,12 +304,8 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
   // The max pools cost a few passes over a's grid per level; a small window is cheaper scored
   // whole (bench_prior_search: below ~2 m the exhaustive search is faster). Same best pose and
   // verdict either way.
-  int levels = 0;
-  while ((1 << levels) < lattice.side) {
-    ++levels;
-  }
   const double pool_work =
-      2.0 * (levels + 2 * lattice.step) * static_cast<double>(distance_a.size());
+      2.0 * (PoolLevels(lattice.side) + 2 * lattice.step) * static_cast<double>(distance_a.size());
   if (static_cast<double>(result.poses) * static_cast<double>(lattice.points.size()) < pool_work) {
     return SearchAroundPriorExhaustive(points_b, distance_a, prior, window_xy, window_theta,
                                        options);
@@ -341,16 +344,12 @@ PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> p
   }
   const MapLimits& limits = distance_a.Limits();
   const double res = limits.Resolution();
-  const int step = std::max(1, static_cast<int>(std::lround(options.linear_step / res)));
-  const int half = static_cast<int>(std::floor(window_xy / (step * res)));
-  const int side = 2 * half + 1;
-  const int angles = 2 * static_cast<int>(std::floor(window_theta / options.angular_step)) + 1;
-  const std::size_t stride =
-      std::max<std::size_t>(1, points_b.size() / static_cast<std::size_t>(options.max_points));
-  std::vector<Eigen::Vector2d> points;
-  for (std::size_t k = 0; k < points_b.size(); k += stride) {
-    points.push_back(points_b[k]);
-  }
+  const SearchLattice lattice = MakeLattice(points_b, res, window_xy, window_theta, options);
+  const int step = lattice.step;
+  const int half = lattice.half;
+  const int side = lattice.side;
+  const int angles = lattice.angles;
+  const std::vector<Eigen::Vector2d>& points = lattice.points;
   const int w = limits.Width();
   const int h = limits.Height();
   const float* field = distance_a.data();
