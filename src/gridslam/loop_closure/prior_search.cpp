@@ -278,73 +278,21 @@ class BranchAndBound {
   double exclusion_ = -1.0;
 };
 
-}  // namespace
-
-double PriorSearchOptions::WindowXy(double uncertainty_distance) const {
-  return std::min(max_window_xy, window_per_m * uncertainty_distance);
+// The pose of lattice rotation a and translation (u, v): p_a = T * p_b.
+Pose2 LatticePose(const SearchLattice& lattice, double resolution, const Pose2& prior, int a, int u,
+                  int v, const PriorSearchOptions& options) {
+  const double dtheta = (a - lattice.angles / 2) * options.angular_step;
+  return Pose2((u - lattice.half) * lattice.step * resolution,
+               (v - lattice.half) * lattice.step * resolution, 0.0) *
+         prior * Pose2(0.0, 0.0, dtheta);
 }
 
-double PriorSearchOptions::WindowTheta(double uncertainty_distance) const {
-  return std::clamp(window_theta_per_m * uncertainty_distance, window_theta,
-                    std::max(window_theta, max_window_theta));
-}
-
-PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
-                                    const Grid2D<float>& distance_a, const Pose2& prior,
-                                    double window_xy, double window_theta,
-                                    const PriorSearchOptions& options) {
+// Scores every pose of the lattice (the exhaustive search, with the exact rival).
+PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<float>& distance_a,
+                                    const Pose2& prior, const PriorSearchOptions& options) {
   PriorSearchResult result;
-  result.T_a_b = prior;
-  if (points_b.empty() || distance_a.size() == 0) {
-    return result;
-  }
-  const double res = distance_a.Limits().Resolution();
-  const SearchLattice lattice = MakeLattice(points_b, res, window_xy, window_theta, options);
-  result.poses = static_cast<long>(lattice.angles) * lattice.side * lattice.side;
-  // The max pools cost a few passes over a's grid per level; a small window is cheaper scored
-  // whole (bench_prior_search: below ~2 m the exhaustive search is faster). Same best pose and
-  // verdict either way.
-  const double pool_work =
-      2.0 * (PoolLevels(lattice.side) + 2 * lattice.step) * static_cast<double>(distance_a.size());
-  if (static_cast<double>(result.poses) * static_cast<double>(lattice.points.size()) < pool_work) {
-    return SearchAroundPriorExhaustive(points_b, distance_a, prior, window_xy, window_theta,
-                                       options);
-  }
-  BranchAndBound search(distance_a, prior, lattice, options);
-  const auto n = static_cast<double>(lattice.points.size());
-  // Poses below min_score are no match: the search need not find them.
-  const float threshold = std::nextafter(static_cast<float>(options.min_score * n), 0.0F);
-  const BranchAndBound::Best best = search.Search(threshold, 0, 0, -1.0, &result.scored);
-  if (!best.found) {
-    return result;
-  }
-  result.score = static_cast<double>(best.score) / n;
-  const double distinct_cells = options.distinct_distance / (lattice.step * res);
-  const BranchAndBound::Best rival =
-      search.Search(static_cast<float>(options.max_ambiguity) * best.score, best.u, best.v,
-                    distinct_cells, &result.scored);
-  result.rival = rival.found ? static_cast<double>(rival.score) / n : 0.0;
-  const double dtheta = (best.a - lattice.angles / 2) * options.angular_step;
-  result.T_a_b = Pose2((best.u - lattice.half) * lattice.step * res,
-                       (best.v - lattice.half) * lattice.step * res, 0.0) *
-                 prior * Pose2(0.0, 0.0, dtheta);
-  result.ok =
-      result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
-  return result;
-}
-
-PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> points_b,
-                                              const Grid2D<float>& distance_a, const Pose2& prior,
-                                              double window_xy, double window_theta,
-                                              const PriorSearchOptions& options) {
-  PriorSearchResult result;
-  result.T_a_b = prior;
-  if (points_b.empty() || distance_a.size() == 0) {
-    return result;
-  }
   const MapLimits& limits = distance_a.Limits();
   const double res = limits.Resolution();
-  const SearchLattice lattice = MakeLattice(points_b, res, window_xy, window_theta, options);
   const int step = lattice.step;
   const int half = lattice.half;
   const int side = lattice.side;
@@ -408,12 +356,74 @@ PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> p
     }
   }
   result.rival = rival / n;
-  const double dtheta = (best_a - angles / 2) * options.angular_step;
-  result.T_a_b = Pose2((best_u - half) * step * res, (best_v - half) * step * res, 0.0) * prior *
-                 Pose2(0.0, 0.0, dtheta);
+  result.T_a_b = LatticePose(lattice, res, prior, best_a, best_u, best_v, options);
   result.ok =
       result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
   return result;
 }
 
+}  // namespace
+
+double PriorSearchOptions::WindowXy(double uncertainty_distance) const {
+  return std::min(max_window_xy, window_per_m * uncertainty_distance);
+}
+
+double PriorSearchOptions::WindowTheta(double uncertainty_distance) const {
+  return std::clamp(window_theta_per_m * uncertainty_distance, window_theta,
+                    std::max(window_theta, max_window_theta));
+}
+
+PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
+                                    const Grid2D<float>& distance_a, const Pose2& prior,
+                                    double window_xy, double window_theta,
+                                    const PriorSearchOptions& options) {
+  PriorSearchResult result;
+  result.T_a_b = prior;
+  if (points_b.empty() || distance_a.size() == 0) {
+    return result;
+  }
+  const double res = distance_a.Limits().Resolution();
+  const SearchLattice lattice = MakeLattice(points_b, res, window_xy, window_theta, options);
+  result.poses = static_cast<long>(lattice.angles) * lattice.side * lattice.side;
+  // The max pools cost a few passes over a's grid per level; a small window is cheaper scored
+  // whole (bench_prior_search: below ~2 m the exhaustive search is faster). Same best pose and
+  // verdict either way.
+  const double pool_work =
+      2.0 * (PoolLevels(lattice.side) + 2 * lattice.step) * static_cast<double>(distance_a.size());
+  if (static_cast<double>(result.poses) * static_cast<double>(lattice.points.size()) < pool_work) {
+    return ScoreWholeLattice(lattice, distance_a, prior, options);
+  }
+  BranchAndBound search(distance_a, prior, lattice, options);
+  const auto n = static_cast<double>(lattice.points.size());
+  // Poses below min_score are no match: the search need not find them.
+  const float threshold = std::nextafter(static_cast<float>(options.min_score * n), 0.0F);
+  const BranchAndBound::Best best = search.Search(threshold, 0, 0, -1.0, &result.scored);
+  if (!best.found) {
+    return result;
+  }
+  result.score = static_cast<double>(best.score) / n;
+  const double distinct_cells = options.distinct_distance / (lattice.step * res);
+  const BranchAndBound::Best rival =
+      search.Search(static_cast<float>(options.max_ambiguity) * best.score, best.u, best.v,
+                    distinct_cells, &result.scored);
+  result.rival = rival.found ? static_cast<double>(rival.score) / n : 0.0;
+  result.T_a_b = LatticePose(lattice, res, prior, best.a, best.u, best.v, options);
+  result.ok =
+      result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
+  return result;
+}
+
+PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> points_b,
+                                              const Grid2D<float>& distance_a, const Pose2& prior,
+                                              double window_xy, double window_theta,
+                                              const PriorSearchOptions& options) {
+  if (points_b.empty() || distance_a.size() == 0) {
+    PriorSearchResult result;
+    result.T_a_b = prior;
+    return result;
+  }
+  const SearchLattice lattice =
+      MakeLattice(points_b, distance_a.Limits().Resolution(), window_xy, window_theta, options);
+  return ScoreWholeLattice(lattice, distance_a, prior, options);
+}
 }  // namespace gridslam::loop_closure

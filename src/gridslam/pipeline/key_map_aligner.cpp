@@ -40,8 +40,7 @@ void GeometryCache::Touch(std::list<std::pair<int, Geometry>>::iterator it) {
 }
 
 FeatureAligner::FeatureAligner(const KeyMapGraph& graph, const matching::AlignOptions& matching,
-                               const loop_closure::LoopClosureOptions& loop_closure,
-                               int cache_size)
+                               const loop_closure::LoopClosureOptions& loop_closure, int cache_size)
     : graph_(graph), matching_(matching), options_(loop_closure), cache_(cache_size) {}
 
 void FeatureAligner::Remember(int id, description::KeyMapGeometry geometry) {
@@ -116,18 +115,18 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   // After a long loop the prediction may be off by more than the refinement converges from.
   const loop_closure::PriorSearchOptions& search = options_.prior_search;
   const double window = search.WindowXy(uncertainty_distance);
+  const double window_theta = search.WindowTheta(uncertainty_distance);
   Pose2 start = T_i_k;
   bool searched = false;
   if (search.enabled && window > search.min_window_xy) {
     ++counters_.prior_searches;
-    const loop_closure::PriorSearchResult found =
-        loop_closure::SearchAroundPrior(geometry_b.obstacle_points, geometry_a.distance, T_i_k,
-                                        window, search.WindowTheta(uncertainty_distance), search);
+    const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
+        geometry_b.obstacle_points, geometry_a.distance, T_i_k, window, window_theta, search);
     GRIDSLAM_LOG_DEBUG(
         "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
         "poses scored, {}",
-        i, k, window, search.WindowTheta(uncertainty_distance), found.score, found.rival,
-        found.scored, found.poses, found.ok ? "ok" : "refused");
+        i, k, window, window_theta, found.score, found.rival, found.scored, found.poses,
+        found.ok ? "ok" : "refused");
     if (!found.ok) {
       return std::nullopt;
     }
@@ -148,9 +147,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained", i, k);
     return std::nullopt;
   }
-  const matching::VerificationResult verified =
-      matching::VerifyAlignment(refined.T_a_b, Verification(geometry_a, geometry_b),
-                                matching_.verification);
+  const matching::VerificationResult verified = matching::VerifyAlignment(
+      refined.T_a_b, Verification(geometry_a, geometry_b), matching_.verification);
   if (!verified.accepted) {
     GRIDSLAM_LOG_DEBUG(
         "prior refinement {}-{}: not verified, overlap {} ({}), agreement {:.2f}, contradiction "
