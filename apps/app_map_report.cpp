@@ -35,6 +35,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"poor_ambiguous", s.poor_ambiguous}}},
       {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
       {"far_window_matches", s.far_matches},
+      {"wall_normal_frames", s.wall_normal_frames},
       {"chi2_final", s.chi2_final},
       {"time_s",
        {{"front_end", s.seconds_front_end},

@@ -57,6 +57,7 @@ nlohmann::json StatsJson(const scan_matching::FrontEndStats& s) {
       {"correlative_searches", s.searches},
       {"degenerate_matches", {{"one_direction", s.degenerate_one}, {"both", s.degenerate_both}}},
       {"far_window_matches", s.far_matches},
+      {"wall_normal_frames", s.wall_normal_frames},
       {"odometry",
        {{"doubtful", s.odometry_doubtful},
         {"missing", s.odometry_missing},

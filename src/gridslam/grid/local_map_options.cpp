@@ -44,7 +44,13 @@ Status LocalMapOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(surface_memory >= 1, "local_map.surface_memory >= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(std::isfinite(normal_angle_sigma) && normal_angle_sigma >= 0.0,
                                    "local_map.normal_angle_sigma >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(std::isfinite(normal_noise_ratio) && normal_noise_ratio >= 0.0,
+                                   "local_map.normal_noise_ratio >= 0"));
   return Status::Ok();
+}
+
+double LocalMapOptions::WallNormalNoise() const {
+  return normal_noise_ratio * resolution / std::sqrt(12.0);
 }
 
 }  // namespace gridslam

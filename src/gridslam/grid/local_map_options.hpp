@@ -33,15 +33,22 @@ struct LocalMapOptions {
   /// Returns with no near neighbour that lie on the line through their neighbouring beams'
   /// returns get its normal (walls at grazing incidence, ExtractScanPoints).
   bool grazing_normals = true;
-  /// The largest standard error of a wall normal's direction [rad] (0 = none, the default): the
-  /// degeneracy test judges what the walls constrain on normals fitted to as many beams (up to 8
-  /// either side) as the scan's own measured noise needs for this. With noisy ranges and dense
-  /// beams a five-beam normal is too short a stretch of wall to be pinned, and its error passes
-  /// the distance gradient along a corridor's walls into the information, enough to hide the
-  /// corridor's degeneracy. 0.1 rad (sqrt(degenerate_fraction / 2)) fixes that for a noisy laser
-  /// but loses on sparse or cropped scans of cluttered rooms, so it is off (docs/front_end.md,
-  /// "Noisy lasers").
+  /// The largest standard error of a wall normal's direction [rad] (0 = never, the default): on a
+  /// noisy laser the degeneracy test judges what the walls constrain on normals fitted to as many
+  /// beams (up to 8 either side) as the scan's own measured noise needs for this. With noisy ranges
+  /// and dense beams a five-beam normal is too short a stretch of wall to be pinned, and its error
+  /// passes the distance gradient along a corridor's walls into the information, enough to hide
+  /// the corridor's degeneracy. 0.1 rad = sqrt(degenerate_fraction / 2) fixes that on the noise
+  /// variants, but even gated on measured noise (normal_noise_ratio) it loses on decimated,
+  /// jittered, sparse and cropped scans of a noisy real laser, so it is off (docs/front_end.md,
+  /// "Noisy lasers, gated").
   double normal_angle_sigma = 0.0;
+  /// A laser is noisy, and gets the wall normals, when the median measured noise of its recent
+  /// scans (ScanPoints::surface_noise) exceeds this multiple of the grid's quantization noise,
+  /// resolution / sqrt(12) (0.0144 m at 0.05 m cells) [-]. A quieter laser's five-beam normals
+  /// are limited by the cells, and on sparse or cropped scans of cluttered rooms the longer fits
+  /// lose (docs/front_end.md, "Noisy lasers, gated").
+  double normal_noise_ratio = 1.0;
 
   /// Number of cells along each side (odd, so the window has a centre cell).
   [[nodiscard]] int NumCells() const;
@@ -78,7 +85,12 @@ struct LocalMapOptions {
     v("normal_angle_sigma", normal_angle_sigma,
       "Largest standard error of the wall normals the degeneracy test uses [rad]: they fit more "
       "beams where the scan's measured noise demands it (0 = the five-beam normals)");
+    v("normal_noise_ratio", normal_noise_ratio,
+      "The wall normals are used when the laser's measured noise exceeds this multiple of the "
+      "grid's quantization noise, resolution / sqrt(12) [-]");
   }
+  /// The measured laser noise above which the wall normals are used [m].
+  [[nodiscard]] double WallNormalNoise() const;
   [[nodiscard]] Status Validate() const;
 };
 

@@ -64,6 +64,7 @@ MapperStats Mapper::Impl::MergedStats() const {
   merged.degenerate_one = front_stats.degenerate_one;
   merged.degenerate_both = front_stats.degenerate_both;
   merged.far_matches = front_stats.far_matches;
+  merged.wall_normal_frames = front_stats.wall_normal_frames;
   merged.seconds_front_end = front_stats.seconds_front_end;
   return merged;
 }
@@ -84,6 +85,7 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   fs.poor_matches += step.poor_match ? 1 : 0;
   fs.poor_rescued += step.rescue == scan_matching::RescueVerdict::kRescued ? 1 : 0;
   fs.poor_ambiguous += step.rescue == scan_matching::RescueVerdict::kAmbiguous ? 1 : 0;
+  fs.wall_normal_frames += step.wall_normals ? 1 : 0;
   if (step.status == scan_matching::FrameStatus::kMatched) {
     fs.degenerate_one += step.match.degeneracy.degenerate_directions == 1 ? 1 : 0;
     fs.degenerate_both += step.match.degeneracy.degenerate_directions == 2 ? 1 : 0;

@@ -68,6 +68,7 @@ struct MapperStats {
   long degenerate_one = 0;
   long degenerate_both = 0;
   long far_matches = 0;  ///< Scans matched against the larger matching window (front_end.hpp).
+  long wall_normal_frames = 0;   ///< Frames judged on the wall normals (a noisy laser).
   long geometry_recomputed = 0;  ///< Key-map distance fields recomputed for alignments.
   double seconds_front_end = 0.0;
   double seconds_description = 0.0;

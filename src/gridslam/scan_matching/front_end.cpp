@@ -314,9 +314,14 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   auto start = Clock::now();
   NormalEstimation normals;
   normals.grazing_normals = options_.local_map.grazing_normals;
-  normals.max_angle_sigma = options_.local_map.normal_angle_sigma;
+  // The wall normals once the laser has measured noisy (laser_noise_monitor.hpp).
+  const bool noisy = laser_noise_.Above(options_.local_map.WallNormalNoise());
+  normals.max_angle_sigma = noisy ? options_.local_map.normal_angle_sigma : 0.0;
   const ScanPoints points =
       ExtractScanPoints(frame.scan, frame.T_base_laser, options_.local_map.max_range, normals);
+  laser_noise_.Add(points.surface_noise);
+  step.wall_normals = !points.wall_normals.empty();
+  stats_.wall_normal_frames += step.wall_normals ? 1 : 0;
   stats_.seconds_preprocess += SecondsSince(start);
 
   const std::optional<Pose2> odometry =

@@ -18,6 +18,7 @@
 #include "gridslam/keymap/key_map_builder.hpp"
 #include "gridslam/scan/laser_scan.hpp"
 #include "gridslam/scan_matching/front_end_options.hpp"
+#include "gridslam/scan_matching/laser_noise_monitor.hpp"
 #include "gridslam/scan_matching/match_score_monitor.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
 #include "gridslam/scan_matching/motion_check.hpp"
@@ -50,6 +51,7 @@ struct FrontEndStep {
   /// whose wide search found a clearly better, unambiguous pose (`rescue`).
   bool odometry_overruled = false;
   bool poor_match = false;  ///< The match with odometry was poor (the wide search ran).
+  bool wall_normals = false;  ///< The degeneracy test used the wall normals (a noisy laser).
   RescueVerdict rescue = RescueVerdict::kNone;  ///< What the wide search after it concluded.
   MatchResult match;                            ///< Details of the match (if one was attempted).
   bool inserted = false;                        ///< The scan was inserted into the local map.
@@ -76,6 +78,8 @@ struct FrontEndStats {
   long degenerate_both = 0;
   /// Matches taken from the matching window, larger than the key-map window (local_map).
   long far_matches = 0;
+  /// Frames whose degeneracy test used the wall normals (the laser measured noisy).
+  long wall_normal_frames = 0;
   long insertions = 0;
   long key_maps = 0;
   long field_rebuilds = 0;
@@ -178,6 +182,7 @@ class FrontEnd {
   OdometryNoiseEstimate odometry_noise_;
   MotionCheck motion_check_;
   MatchScoreMonitor score_monitor_;  ///< Scores of the accepted matches.
+  LaserNoiseMonitor laser_noise_;    ///< Whether the wall normals are used.
   FrontEndStats stats_;
   Pose2 last_estimate_;     ///< Estimated pose of the previous frame.
   Pose2 last_insert_pose_;  ///< Pose of the last inserted scan.
