@@ -50,7 +50,7 @@ struct FrontEndStep {
   /// The scan overruled the odometry increment: a doubtful one, or one whose match was poor and
   /// whose wide search found a clearly better, unambiguous pose (`rescue`).
   bool odometry_overruled = false;
-  bool poor_match = false;  ///< The match with odometry was poor (the wide search ran).
+  bool poor_match = false;    ///< The match with odometry was poor (the wide search ran).
   bool wall_normals = false;  ///< The degeneracy test used the wall normals (a noisy laser).
   RescueVerdict rescue = RescueVerdict::kNone;  ///< What the wide search after it concluded.
   MatchResult match;                            ///< Details of the match (if one was attempted).
