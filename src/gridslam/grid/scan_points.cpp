@@ -123,7 +123,7 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
         hit[k] = 1;
         laser_points[k] = r * dir;
       }
-    } else if (std::isfinite(r) && r >= scan.range_max && r > scan.range_min) {
+    } else if (scan.IsNoReturn(k)) {
       out.no_return_directions.push_back(T_base_laser.Rotation() * dir);
     }
   }

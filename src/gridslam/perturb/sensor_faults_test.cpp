@@ -47,6 +47,22 @@ TEST(SensorFaults, RangeLimitTurnsLongReadingsIntoNoReturns) {
   EXPECT_EQ(out.CountHits(), 70U);  // 1.0 .. 7.9 m
 }
 
+// 5.6 m has no exact float: the readings set to the limit must still be no-returns (they were hits
+// on a circle around the robot before LaserScan compared in the readings' precision).
+TEST(SensorFaults, ARangeLimitAFloatCannotHoldStillMakesNoReturns) {
+  PerturbOptions options;
+  options.max_range = 5.6;
+  const LaserScan out = Apply(MakeScan(), options);
+  std::size_t no_returns = 0;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double r = 1.0 + 0.1 * static_cast<double>(k);
+    EXPECT_EQ(out.IsHit(k), r < 5.6 - 1e-6) << k;
+    no_returns += out.IsNoReturn(k) ? 1 : 0;
+  }
+  EXPECT_EQ(out.CountHits(), 46U);  // 1.0 .. 5.5 m
+  EXPECT_EQ(no_returns, out.size() - 46U);
+}
+
 TEST(SensorFaults, FieldOfViewCropKeepsTheCentralBeams) {
   PerturbOptions options;
   options.fov_deg = 90.0;

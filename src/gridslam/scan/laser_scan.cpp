@@ -1,12 +1,36 @@
 #include "gridslam/scan/laser_scan.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace gridslam {
+namespace {
+
+// A limit in the precision of the readings. Readings are floats, limits doubles parsed from the
+// same text ("5.600000" in a header, "5.60" in the readings) or set by a tool: compared as
+// doubles, a reading at the limit would fall just below it (5.6F < 5.6) and count as a hit.
+float InReadingPrecision(double limit) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (limit >= kMax) {
+    return std::numeric_limits<float>::infinity();
+  }
+  if (limit <= -kMax) {
+    return -std::numeric_limits<float>::infinity();
+  }
+  return static_cast<float>(limit);
+}
+
+}  // namespace
 
 bool LaserScan::IsHit(std::size_t k) const {
-  const double r = ranges[k];
-  return std::isfinite(r) && r > range_min && r < range_max;
+  const float r = ranges[k];
+  return std::isfinite(r) && r > InReadingPrecision(range_min) && r < InReadingPrecision(range_max);
+}
+
+bool LaserScan::IsNoReturn(std::size_t k) const {
+  const float r = ranges[k];
+  return std::isfinite(r) && r >= InReadingPrecision(range_max) &&
+         r > InReadingPrecision(range_min);
 }
 
 std::size_t LaserScan::CountHits() const {

@@ -24,8 +24,11 @@ struct LaserScan {
   [[nodiscard]] double Angle(std::size_t k) const {
     return angle_min + static_cast<double>(k) * angle_increment;
   }
-  /// True when beam k returned from an obstacle (finite, in (range_min, range_max)).
+  /// True when beam k returned from an obstacle (finite, in (range_min, range_max)). The limits
+  /// are compared in the readings' (float) precision, so a reading equal to range_max is not a hit.
   [[nodiscard]] bool IsHit(std::size_t k) const;
+  /// True when beam k saw nothing within range (finite, at or above range_max, above range_min).
+  [[nodiscard]] bool IsNoReturn(std::size_t k) const;
   /// Endpoints of the hits in the laser frame [m].
   [[nodiscard]] std::vector<Eigen::Vector2d> HitPoints() const;
   /// Number of hits.
