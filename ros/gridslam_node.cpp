@@ -1,6 +1,7 @@
 #include "gridslam_node.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include "ros_conversions.hpp"
 #include <nav_msgs/OccupancyGrid.h>
@@ -222,8 +223,10 @@ bool GridslamNode::OnSaveMap(std_srvs::Trigger::Request& /*request*/,
                              std_srvs::Trigger::Response& response) {
   std::string message;
   response.success = core_->SaveMap(OutputDir(private_nh_, params_), &message) ? 1 : 0;
-  response.message = message;
-  ROS_INFO("gridslam_node: save_map: %s", message.c_str());
+  // The count lets a caller (tests/ros_node_test.sh) tell that every scan it sent has arrived.
+  response.message =
+      std::to_string(core_->Progress().scans_received) + " scans received; " + message;
+  ROS_INFO("gridslam_node: save_map: %s", response.message.c_str());
   return true;
 }
 

@@ -90,16 +90,38 @@ map_bag() {
 
   echo "ros_node_test: $name: rosbag play -r $rate $(basename "$bag") ($scans scans)"
   local start=$SECONDS
-  timeout 900 rosbag play --clock -q --queue=100000 -r "$rate" "$bag" > "$dir/play.log" 2>&1 \
-    < /dev/null ||
-    { show_log "$dir/play.log"; fail "$name: rosbag play failed or timed out"; }
-  echo "ros_node_test: $name: played in $((SECONDS - start)) s"
-  sleep 3  # the last scans in flight
-
-  local reply
-  reply=$(timeout 120 rosservice call /gridslam_node/save_map 2>&1) ||
-    { echo "$reply"; fail "$name: ~save_map call"; }
-  grep -q "success: True" <<< "$reply" || { echo "$reply"; fail "$name: ~save_map failed"; }
+  # Every scan must reach the node, however loaded the machine is: the player waits 5 s after
+  # advertising a topic (-d; its default 0.2 s lost the bag's first scans to a subscriber that
+  # connected late), and stays alive after the bag's end (-k: a player that exits drops what its
+  # queue still holds for a subscriber that fell behind). The node has them all once ~save_map
+  # reports as many scans received as the bag holds; the player is stopped then. Polled from the
+  # bag's playing time on, for at most 300 s more.
+  rosbag play -k -d 5 --clock -q --queue=100000 -r "$rate" "$bag" > "$dir/play.log" 2>&1 \
+    < /dev/null &
+  local play_pid=$!
+  local duration
+  duration=$("$cli_bin" info "$bag" 2> /dev/null | sed -n 's/^  duration: \([0-9]*\).*/\1/p')
+  local playing=$(( ${duration:-0} / rate ))
+  sleep "$playing"
+  local reply received=""
+  while :; do
+    reply=$(timeout 120 rosservice call /gridslam_node/save_map 2>&1) ||
+      { echo "$reply"; kill "$play_pid" 2> /dev/null; fail "$name: ~save_map call"; }
+    grep -q "success: True" <<< "$reply" ||
+      { echo "$reply"; kill "$play_pid" 2> /dev/null; fail "$name: ~save_map failed"; }
+    # the message begins "N scans received; " (rosservice may fold a long one, with backslashes)
+    received=$(tr -d '\\' <<< "$reply" | tr -s ' \n' '  ' |
+      sed -n 's/.*message: "\([0-9]*\) scans received;.*/\1/p')
+    [ "$received" = "$scans" ] && break
+    kill -0 "$play_pid" 2> /dev/null ||
+      { show_log "$dir/play.log"; fail "$name: rosbag play exited ($received of $scans scans received)"; }
+    [ $((SECONDS - start)) -lt $((playing + 300)) ] ||
+      { kill "$play_pid"; fail "$name: the node received $received of the bag's $scans scans"; }
+    sleep 2
+  done
+  kill "$play_pid" 2> /dev/null || true
+  wait "$play_pid" 2> /dev/null || true
+  echo "ros_node_test: $name: played in $((SECONDS - start)) s, every scan received"
   [ -s "$dir/out/map.pgm" ] && grep -q "^image: map.pgm" "$dir/out/map.yaml" ||
     fail "$name: ~save_map wrote no map.pgm + map.yaml"
   reply=$(timeout 300 rosservice call /gridslam_node/finish 2>&1) ||
