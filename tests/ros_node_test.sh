@@ -67,8 +67,10 @@ map_bag() {
   shift 4
   local dir="$tmp/$name"
   mkdir -p "$dir"
-  local scans
-  scans=$("$cli_bin" info "$bag" 2> /dev/null | sed -n 's/^  scans: \([0-9]*\) over.*/\1/p')
+  local info scans duration
+  info=$("$cli_bin" info "$bag" 2> /dev/null)
+  scans=$(sed -n 's/^  scans: \([0-9]*\) over.*/\1/p' <<< "$info")
+  duration=$(sed -n 's/^  duration: \([0-9]*\).*/\1/p' <<< "$info")
   [ -n "$scans" ] || fail "$name: cannot count the scans of $bag"
 
   # Nothing may depend on the machine's load (ctest runs other tests beside this one): generous
@@ -95,32 +97,27 @@ map_bag() {
   # connected late), and stays alive after the bag's end (-k: a player that exits drops what its
   # queue still holds for a subscriber that fell behind). The node has them all once ~save_map
   # reports as many scans received as the bag holds; the player is stopped then. Polled from the
-  # bag's playing time on, for at most 300 s more.
-  rosbag play -k -d 5 --clock -q --queue=100000 -r "$rate" "$bag" > "$dir/play.log" 2>&1 \
-    < /dev/null &
-  local play_pid=$!
-  local duration
-  duration=$("$cli_bin" info "$bag" 2> /dev/null | sed -n 's/^  duration: \([0-9]*\).*/\1/p')
+  # bag's playing time on, for at most 300 s more. (A failure's cleanup stops the player.)
+  ros_session_spawn "$dir/play.log" rosbag play -k -d 5 --clock -q --queue=100000 -r "$rate" "$bag"
+  local play_pid="$ROS_SESSION_PID"
   local playing=$(( ${duration:-0} / rate ))
   sleep "$playing"
   local reply received=""
   while :; do
     reply=$(timeout 120 rosservice call /gridslam_node/save_map 2>&1) ||
-      { echo "$reply"; kill "$play_pid" 2> /dev/null; fail "$name: ~save_map call"; }
-    grep -q "success: True" <<< "$reply" ||
-      { echo "$reply"; kill "$play_pid" 2> /dev/null; fail "$name: ~save_map failed"; }
+      { echo "$reply"; fail "$name: ~save_map call"; }
+    grep -q "success: True" <<< "$reply" || { echo "$reply"; fail "$name: ~save_map failed"; }
     # the message begins "N scans received; " (rosservice may fold a long one, with backslashes)
     received=$(tr -d '\\' <<< "$reply" | tr -s ' \n' '  ' |
       sed -n 's/.*message: "\([0-9]*\) scans received;.*/\1/p')
     [ "$received" = "$scans" ] && break
     kill -0 "$play_pid" 2> /dev/null ||
-      { show_log "$dir/play.log"; fail "$name: rosbag play exited ($received of $scans scans received)"; }
+      { show_log "$dir/play.log"; fail "$name: rosbag play exited ($received of $scans scans)"; }
     [ $((SECONDS - start)) -lt $((playing + 300)) ] ||
-      { kill "$play_pid"; fail "$name: the node received $received of the bag's $scans scans"; }
+      fail "$name: the node received $received of the bag's $scans scans"
     sleep 2
   done
-  kill "$play_pid" 2> /dev/null || true
-  wait "$play_pid" 2> /dev/null || true
+  ros_session_end "$play_pid"
   echo "ros_node_test: $name: played in $((SECONDS - start)) s, every scan received"
   [ -s "$dir/out/map.pgm" ] && grep -q "^image: map.pgm" "$dir/out/map.yaml" ||
     fail "$name: ~save_map wrote no map.pgm + map.yaml"
