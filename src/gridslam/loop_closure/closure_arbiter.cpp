@@ -19,10 +19,18 @@ std::optional<Match> Oriented(const Match& stored, int from, int to, Group group
     return stored;
   }
   if (gi == to && gk == from) {
-    return Match{stored.k, stored.i, stored.T_i_k.Inverse()};
+    return Reversed(stored);
   }
   return std::nullopt;
 }
+
+// `v` without its component along the unit `axis`.
+Eigen::Vector2d WithoutAxis(const Eigen::Vector2d& v, const Eigen::Vector2d& axis) {
+  return v - v.dot(axis) * axis;
+}
+
+// Two free axes this close to parallel (|sin| of the angle between them) count as one.
+constexpr double kParallelAxes = 0.17;  // 10 degrees
 
 bool Within(const Pose2& loop, double xy, double theta) {
   return loop.translation().norm() < xy && std::abs(loop.theta()) < theta;
@@ -46,8 +54,25 @@ std::string_view ToString(ClosureOutcome outcome) {
   return "unknown";
 }
 
+Match Reversed(const Match& match) {
+  Match reversed{match.k, match.i, match.T_i_k.Inverse()};
+  if (match.free_axis.has_value()) {
+    reversed.free_axis = match.T_i_k.Rotation().transpose() * *match.free_axis;
+    reversed.free_sigma = match.free_sigma;
+  }
+  return reversed;
+}
+
 Pose2 ClosureError(const Match& match, const GraphView& graph) {
-  return Between(Between(graph.Estimate(match.i), graph.Estimate(match.k)), match.T_i_k);
+  const Pose2 predicted = Between(graph.Estimate(match.i), graph.Estimate(match.k));
+  const Pose2 error = Between(predicted, match.T_i_k);
+  if (!match.free_axis.has_value()) {
+    return error;
+  }
+  // error's translation is R_predicted^T (t_measured - t_predicted), t in i's frame.
+  const Eigen::Vector2d axis = predicted.Rotation().transpose() * *match.free_axis;
+  const Eigen::Vector2d measured = WithoutAxis(error.translation(), axis);
+  return Pose2(measured.x(), measured.y(), error.theta());
 }
 
 bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
@@ -56,8 +81,29 @@ bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
 }
 
 Pose2 LoopError(const Match& a, const Match& b, const GraphView& graph) {
-  return a.T_i_k * Between(graph.Estimate(a.k), graph.Estimate(b.k)) * b.T_i_k.Inverse() *
-         Between(graph.Estimate(b.i), graph.Estimate(a.i));
+  const Pose2 T_bi_ai = Between(graph.Estimate(b.i), graph.Estimate(a.i));
+  const Pose2 loop =
+      a.T_i_k * Between(graph.Estimate(a.k), graph.Estimate(b.k)) * b.T_i_k.Inverse() * T_bi_ai;
+  if (!a.free_axis.has_value() && !b.free_axis.has_value()) {
+    return loop;
+  }
+  // The loop starts and ends in a.i's frame: a translation error of a (in a.i's frame) moves its
+  // translation as it is, one of b (in b.i's frame) rotated into a.i's frame.
+  std::vector<Eigen::Vector2d> axes;
+  if (a.free_axis.has_value()) {
+    axes.push_back(*a.free_axis);
+  }
+  if (b.free_axis.has_value()) {
+    axes.push_back(T_bi_ai.Rotation().transpose() * *b.free_axis);
+  }
+  Eigen::Vector2d measured = WithoutAxis(loop.translation(), axes.front());
+  if (axes.size() == 2) {
+    const double sine = axes[0].x() * axes[1].y() - axes[0].y() * axes[1].x();
+    if (std::abs(sine) > kParallelAxes) {
+      measured.setZero();  // two crossing free axes leave no translation measured
+    }
+  }
+  return Pose2(measured.x(), measured.y(), loop.theta());
 }
 
 bool PairConsistent(const Match& a, const Match& b, const GraphView& graph,

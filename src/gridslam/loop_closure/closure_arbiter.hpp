@@ -15,8 +15,11 @@
 // order given, first the new match) as loop edges. Deterministic: equal inputs, equal answers.
 #pragma once
 
+#include <optional>
 #include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "gridslam/geometry/pose2.hpp"
 #include "gridslam/loop_closure/loop_closure_options.hpp"
@@ -38,7 +41,16 @@ struct Match {
   int i = 0;
   int k = 0;
   Pose2 T_i_k;
+  /// Set for a ridge (a corridor, a straight road): the direction (unit, in i's frame) along
+  /// which T_i_k's translation is not measured. Every check below ignores that component.
+  std::optional<Eigen::Vector2d> free_axis = std::nullopt;
+  /// Standard deviation of the translation along free_axis [m]: the spread of the window the
+  /// search covered (uniform over +-w: w / sqrt(3)). Positive when free_axis is set.
+  double free_sigma = 0.0;
 };
+
+/// The match seen from the other side: i's pose in k's frame (the free axis rotated with it).
+[[nodiscard]] Match Reversed(const Match& match);
 
 /// What the arbiter reads of the graph (implemented by pipeline::KeyMapGraph, or a test).
 class GraphView {
@@ -66,13 +78,16 @@ struct Decision {
   bool in_gate = false;
 };
 
-/// Between(predicted, measured): how far the match is from the current estimate.
+/// Between(predicted, measured): how far the match is from the current estimate; for a ridge,
+/// without the translation along its free axis.
 [[nodiscard]] Pose2 ClosureError(const Match& match, const GraphView& graph);
 /// The consistency gate: `error` within gate_xy + gate_xy_per_m * u and gate_theta +
 /// gate_theta_per_m * u, u the uncertainty distance between the key maps [m].
 [[nodiscard]] bool InGate(const Pose2& error, double u, const LoopClosureOptions& options);
 /// The loop a.i -> a.k (measured), a.k -> b.k (estimate), b.k -> b.i (measured), b.i -> a.i
 /// (estimate): identity when both matches agree with each other and the estimate on each side.
+/// For ridges, without the translation along their free axes (both removed when they cross:
+/// then only the rotation is checked).
 [[nodiscard]] Pose2 LoopError(const Match& a, const Match& b, const GraphView& graph);
 /// Pairwise consistency of appearance matches: the loop closes within pairwise_xy/theta plus
 /// the gate's growth per metre of the distance the loop spans on each side.

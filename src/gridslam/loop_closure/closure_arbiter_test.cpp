@@ -3,6 +3,7 @@
 // that differs from the estimate where the test wants the estimate to be wrong.
 #include "gridslam/loop_closure/closure_arbiter.hpp"
 
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -184,6 +185,89 @@ struct TwoRobots {
     return Measure(i, k, truth[static_cast<std::size_t>(i)], truth[static_cast<std::size_t>(k)]);
   }
 };
+
+// A ridge match: the truth's measurement with its translation moved `along` metres along the
+// free axis `axis` (i's frame), where the search could not tell the position.
+Match Ridge(const Match& truth, const Eigen::Vector2d& axis, double along) {
+  Match ridge = truth;
+  const Eigen::Vector2d t = truth.T_i_k.translation() + along * axis;
+  ridge.T_i_k = Pose2(t.x(), t.y(), truth.T_i_k.theta());
+  ridge.free_axis = axis;
+  return ridge;
+}
+
+TEST(ClosureArbiter, ARidgeIsJudgedWithoutItsFreeAxis) {
+  // The newer key maps' estimate is 1 m off across the line and 0.02 rad in heading.
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.02));
+  const Eigen::Vector2d along_x(1.0, 0.0);
+  const Match a = Ridge(line.Closure(2, 30), along_x, 1.7);
+  const Match b = Ridge(line.Closure(5, 31), along_x, -2.4);
+  // Error against the estimate: the 1.7 m along the line is not part of it.
+  const Pose2 full = Between(Between(line.graph.Estimate(2), line.graph.Estimate(30)), a.T_i_k);
+  const Pose2 error = ClosureError(a, line.graph);
+  EXPECT_GT(full.translation().norm(), 2.0);
+  EXPECT_NEAR(error.theta(), full.theta(), 1e-12);
+  // Across the line the estimate is off by 1 m plus the heading error's 0.02 rad over 28 m.
+  EXPECT_NEAR(error.translation().norm(), 1.0 + 30.0 * std::sin(0.02), 1e-9);
+  // The two ridges agree with each other where they measure, although 4.1 m apart along it ...
+  const Pose2 loop = LoopError(a, b, line.graph);
+  EXPECT_LT(loop.translation().norm(), 1e-9);
+  EXPECT_LT(std::abs(loop.theta()), 1e-9);
+  Match a_full = a;
+  Match b_full = b;
+  a_full.free_axis.reset();
+  b_full.free_axis.reset();
+  EXPECT_NEAR(LoopError(a_full, b_full, line.graph).translation().norm(), 4.1, 1e-9);
+  // ... but not when one of them is off across the line.
+  Match across = b;
+  across.T_i_k = Pose2(b.T_i_k.x(), b.T_i_k.y() + 0.5, b.T_i_k.theta());
+  EXPECT_NEAR(LoopError(a, across, line.graph).translation().norm(), 0.5, 1e-6);
+  // Free axes that cross leave only the rotation to check.
+  Match crossing = Ridge(line.Closure(5, 31), Eigen::Vector2d(0.0, 1.0), 0.8);
+  EXPECT_LT(LoopError(a, crossing, line.graph).translation().norm(), 1e-12);
+}
+
+TEST(ClosureArbiter, ReversingARidgeRotatesItsAxis) {
+  const Match match{3, 7, Pose2(2.0, 1.0, M_PI / 2.0), Eigen::Vector2d(1.0, 0.0)};
+  const Match reversed = Reversed(match);
+  EXPECT_EQ(reversed.i, 7);
+  EXPECT_EQ(reversed.k, 3);
+  ASSERT_TRUE(reversed.free_axis.has_value());
+  // i's x axis, seen from k (turned by 90 degrees), is k's -y axis.
+  EXPECT_TRUE(reversed.free_axis->isApprox(Eigen::Vector2d(0.0, -1.0), 1e-12));
+  EXPECT_FALSE(Reversed(Match{3, 7, Pose2(2.0, 1.0, 0.3)}).free_axis.has_value());
+}
+
+// Ridges found by the search along one straight stretch, each at another position along it,
+// correct the heading and the offset across it as a group.
+TEST(ClosureArbiter, AcceptsAConsistentGroupOfRidges) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.02));
+  const LoopClosureOptions options;
+  ClosureArbiter arbiter(options);
+  const Eigen::Vector2d along_x(1.0, 0.0);
+  EXPECT_EQ(
+      arbiter.OfferPrior(Ridge(line.Closure(2, 30), along_x, 1.2), 20.0, true, line.graph).verdict,
+      Verdict::kWait);
+  EXPECT_EQ(
+      arbiter.OfferPrior(Ridge(line.Closure(5, 31), along_x, -0.8), 20.0, true, line.graph).verdict,
+      Verdict::kWait);
+  const Decision d =
+      arbiter.OfferPrior(Ridge(line.Closure(8, 32), along_x, 2.6), 20.0, true, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  ASSERT_EQ(d.accepted.size(), 3U);
+  for (const Match& m : d.accepted) {
+    EXPECT_TRUE(m.free_axis.has_value());
+  }
+  // The same ridges, one of them 0.6 m off across the line: no group.
+  ClosureArbiter strict(options);
+  strict.OfferPrior(Ridge(line.Closure(2, 30), along_x, 1.2), 20.0, true, line.graph);
+  Match off = Ridge(line.Closure(5, 31), along_x, -0.8);
+  off.T_i_k = Pose2(off.T_i_k.x(), off.T_i_k.y() + 0.6, off.T_i_k.theta());
+  strict.OfferPrior(off, 20.0, true, line.graph);
+  Match third = Ridge(line.Closure(8, 32), along_x, 2.6);
+  third.T_i_k = Pose2(third.T_i_k.x(), third.T_i_k.y() - 0.6, third.T_i_k.theta());
+  EXPECT_EQ(strict.OfferPrior(third, 20.0, true, line.graph).verdict, Verdict::kWait);
+}
 
 TEST(ClosureArbiter, WithinMapRejectsAMatchThatWouldMoveTheMapTooFar) {
   const TwoRobots robots(Pose2(20.0, 0.0, 0.0), true);

@@ -51,6 +51,31 @@ SearchLattice MakeLattice(std::span<const Eigen::Vector2d> points_b, double reso
   return lattice;
 }
 
+// Lattice translations a rival search leaves out, in lattice steps: none, the disc of `radius`
+// around (u, v), or the strip of half-width `radius` around the line through (u, v) with unit
+// normal (nu, nv). Every rotation of an excluded translation is excluded.
+struct Exclusion {
+  enum class Shape { kNone, kDisc, kStrip };
+  Shape shape = Shape::kNone;
+  int u = 0;
+  int v = 0;
+  double radius = 0.0;
+  double nu = 0.0;
+  double nv = 0.0;
+
+  [[nodiscard]] bool Contains(int pu, int pv) const {
+    switch (shape) {
+      case Shape::kNone:
+        return false;
+      case Shape::kDisc:
+        return std::hypot(pu - u, pv - v) <= radius;
+      case Shape::kStrip:
+        return std::abs(nu * (pu - u) + nv * (pv - v)) <= radius;
+    }
+    return false;
+  }
+};
+
 // Levels of max pools that cover a lattice side: the smallest L with 2^L >= side.
 int PoolLevels(int side) {
   int levels = 0;
@@ -106,11 +131,9 @@ class BranchAndBound {
     bool found = false;
   };
 
-  // The best pose scoring more than `threshold`, outside the disc of radius `exclusion` (lattice
-  // steps) around (eu, ev) when exclusion >= 0. `scored` counts the bounds and leaves evaluated.
-  Best Search(float threshold, int eu, int ev, double exclusion, long* scored) {
-    exclude_u_ = eu;
-    exclude_v_ = ev;
+  // The best pose scoring more than `threshold` whose translation `exclusion` does not contain.
+  // `scored` counts the bounds and leaves evaluated.
+  Best Search(float threshold, const Exclusion& exclusion, long* scored) {
     exclusion_ = exclusion;
     Best best;
     best.score = threshold;
@@ -226,15 +249,13 @@ class BranchAndBound {
     return sum;
   }
 
-  // Whether every translation of the block lies within the exclusion disc.
+  // Whether every translation of the block lies within the exclusion (a disc and a strip are
+  // convex: it is enough that the block's four corners do).
   [[nodiscard]] bool Excluded(const Node& node) const {
-    if (exclusion_ < 0.0) {
-      return false;
-    }
     const int last = (1 << node.level) - 1;
-    const int du = std::max(std::abs(node.u0 - exclude_u_), std::abs(node.u0 + last - exclude_u_));
-    const int dv = std::max(std::abs(node.v0 - exclude_v_), std::abs(node.v0 + last - exclude_v_));
-    return std::hypot(du, dv) <= exclusion_;
+    return exclusion_.Contains(node.u0, node.v0) && exclusion_.Contains(node.u0 + last, node.v0) &&
+           exclusion_.Contains(node.u0, node.v0 + last) &&
+           exclusion_.Contains(node.u0 + last, node.v0 + last);
   }
 
   void Descend(std::vector<Node>& nodes, Best* best, long* scored) {
@@ -273,10 +294,15 @@ class BranchAndBound {
   std::vector<std::vector<float>> pools_;
   std::vector<int> cell_i_;
   std::vector<int> cell_j_;
-  int exclude_u_ = 0;
-  int exclude_v_ = 0;
-  double exclusion_ = -1.0;
+  Exclusion exclusion_;
 };
+
+// The strip of half-width `radius` around the line from the best translation (u, v) through its
+// rival's (ru, rv): the poses a rival on that line does not tell apart from the best.
+Exclusion RidgeStrip(int u, int v, int ru, int rv, double radius) {
+  const double length = std::hypot(ru - u, rv - v);
+  return Exclusion{Exclusion::Shape::kStrip, u, v, radius, -(rv - v) / length, (ru - u) / length};
+}
 
 // The pose of lattice rotation a and translation (u, v): p_a = T * p_b.
 Pose2 LatticePose(const SearchLattice& lattice, double resolution, const Pose2& prior, int a, int u,
@@ -345,20 +371,42 @@ PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<f
   const double n = static_cast<double>(points.size());
   result.score = *best / n;
   const double distinct_cells = options.distinct_distance / (step * res);
-  float rival = 0.0F;
-  for (int a = 0; a < angles; ++a) {
-    for (int v = 0; v < side; ++v) {
-      for (int u = 0; u < side; ++u) {
-        if (std::hypot(u - best_u, v - best_v) > distinct_cells) {
-          rival = std::max(rival, scores[(static_cast<std::size_t>(a) * side + v) * side + u]);
+  // The best score of the translations `exclusion` does not contain, and where it lies.
+  const auto best_outside = [&](const Exclusion& exclusion, int* at_u, int* at_v) {
+    float found = 0.0F;
+    for (int a = 0; a < angles; ++a) {
+      for (int v = 0; v < side; ++v) {
+        for (int u = 0; u < side; ++u) {
+          const float s = scores[(static_cast<std::size_t>(a) * side + v) * side + u];
+          if (s > found && !exclusion.Contains(u, v)) {
+            found = s;
+            *at_u = u;
+            *at_v = v;
+          }
         }
       }
     }
-  }
+    return found;
+  };
+  int rival_u = best_u;
+  int rival_v = best_v;
+  const float rival =
+      best_outside(Exclusion{Exclusion::Shape::kDisc, best_u, best_v, distinct_cells, 0.0, 0.0},
+                   &rival_u, &rival_v);
   result.rival = rival / n;
   result.T_a_b = LatticePose(lattice, res, prior, best_a, best_u, best_v, options);
-  result.ok =
-      result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
+  const bool distinct = result.rival <= options.max_ambiguity * result.score;
+  if (!distinct && options.ridge_closures) {
+    const Exclusion strip = RidgeStrip(best_u, best_v, rival_u, rival_v, distinct_cells);
+    int off_u = 0;
+    int off_v = 0;
+    result.off_ridge = best_outside(strip, &off_u, &off_v) / n;
+    result.ridge = result.off_ridge <= options.max_ambiguity * result.score;
+    if (result.ridge) {
+      result.ridge_axis = Eigen::Vector2d(strip.nv, -strip.nu);
+    }
+  }
+  result.ok = result.score >= options.min_score && (distinct || result.ridge);
   return result;
 }
 
@@ -397,19 +445,32 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
   const auto n = static_cast<double>(lattice.points.size());
   // Poses below min_score are no match: the search need not find them.
   const float threshold = std::nextafter(static_cast<float>(options.min_score * n), 0.0F);
-  const BranchAndBound::Best best = search.Search(threshold, 0, 0, -1.0, &result.scored);
+  const BranchAndBound::Best best = search.Search(threshold, Exclusion{}, &result.scored);
   if (!best.found) {
     return result;
   }
   result.score = static_cast<double>(best.score) / n;
   const double distinct_cells = options.distinct_distance / (lattice.step * res);
-  const BranchAndBound::Best rival =
-      search.Search(static_cast<float>(options.max_ambiguity) * best.score, best.u, best.v,
-                    distinct_cells, &result.scored);
+  const float ambiguous = static_cast<float>(options.max_ambiguity) * best.score;
+  const BranchAndBound::Best rival = search.Search(
+      ambiguous, Exclusion{Exclusion::Shape::kDisc, best.u, best.v, distinct_cells, 0.0, 0.0},
+      &result.scored);
   result.rival = rival.found ? static_cast<double>(rival.score) / n : 0.0;
   result.T_a_b = LatticePose(lattice, res, prior, best.a, best.u, best.v, options);
-  result.ok =
-      result.score >= options.min_score && result.rival <= options.max_ambiguity * result.score;
+  const bool distinct = result.rival <= options.max_ambiguity * result.score;
+  if (!distinct && options.ridge_closures) {
+    // Rivals only on the line through the best pose and its rival: a ridge (a corridor, a
+    // straight road), whose position along the line is unknown and whose heading and offset
+    // across it are measured.
+    const Exclusion strip = RidgeStrip(best.u, best.v, rival.u, rival.v, distinct_cells);
+    const BranchAndBound::Best off = search.Search(ambiguous, strip, &result.scored);
+    result.off_ridge = off.found ? static_cast<double>(off.score) / n : 0.0;
+    result.ridge = result.off_ridge <= options.max_ambiguity * result.score;
+    if (result.ridge) {
+      result.ridge_axis = Eigen::Vector2d(strip.nv, -strip.nu);
+    }
+  }
+  result.ok = result.score >= options.min_score && (distinct || result.ridge);
   return result;
 }
 

@@ -46,6 +46,10 @@ struct PriorSearchOptions {
   /// max_ambiguity times the best [m], [-].
   double distinct_distance = 0.5;
   double max_ambiguity = 0.85;
+  /// When every rival lies on the line through the best pose and the best rival (within
+  /// distinct_distance of it: a corridor, a straight road), accept the search as a ridge: its
+  /// heading and its offset across the line are measured, its position along the line is not.
+  bool ridge_closures = true;
 
   template <class V>
   void Visit(V& v) {
@@ -69,6 +73,9 @@ struct PriorSearchOptions {
       "Poses farther than this from the best are its rivals [m]");
     v("max_ambiguity", max_ambiguity,
       "Refused when the best rival scores more than this fraction of the best [-]");
+    v("ridge_closures", ridge_closures,
+      "Accept a search whose rivals all lie on one line through the best pose, with the "
+      "position along that line left unmeasured");
   }
   [[nodiscard]] Status Validate() const;
   /// The translation and rotation half-windows for an uncertainty distance [m] -> [m], [rad].
@@ -77,7 +84,8 @@ struct PriorSearchOptions {
 };
 
 struct PriorSearchResult {
-  bool ok = false;     ///< Best score >= min_score and distinct enough.
+  /// Best score >= min_score, and distinct enough or a ridge.
+  bool ok = false;
   Pose2 T_a_b;         ///< Best pose of the grid.
   double score = 0.0;  ///< Its score [-]; 0 when no pose reaches min_score.
   /// Best score farther than distinct_distance from it [-]. Branch and bound finds it only when
@@ -85,6 +93,14 @@ struct PriorSearchResult {
   /// needs no more); the exhaustive search, which SearchAroundPrior runs for small windows,
   /// reports it always.
   double rival = 0.0;
+  /// The rivals all lie within distinct_distance of the line through the best pose along
+  /// ridge_axis (unit, a's frame): the translation along it is not measured (ridge_closures).
+  bool ridge = false;
+  Eigen::Vector2d ridge_axis = Eigen::Vector2d::Zero();
+  /// Best score of the poses farther than distinct_distance from that line [-], computed only
+  /// when the rival is ambiguous (branch and bound: only when it exceeds max_ambiguity times the
+  /// best, 0 otherwise).
+  double off_ridge = 0.0;
   long poses = 0;   ///< Poses in the window's lattice.
   long scored = 0;  ///< Bounds and poses evaluated.
 };

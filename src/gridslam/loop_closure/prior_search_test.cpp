@@ -95,17 +95,67 @@ TEST(PriorSearch, RefusesAPoseTheWindowDoesNotHold) {
   EXPECT_FALSE(result.ok) << result.score;
 }
 
-TEST(PriorSearch, RefusesACorridorAsAmbiguous) {
+// A corridor is a ridge: every pose along it scores as well as the truth. Without ridge
+// closures it is refused as ambiguous; with them it is accepted, with the axis along the
+// corridor, and the offset across it and the heading measured.
+TEST(PriorSearch, ACorridorIsARidgeAlongItsAxis) {
   const Grid2D<std::uint8_t> obstacles = Corridor();
   const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
-  const Pose2 T_a_b(0.5, 0.0, 0.0);
+  const Pose2 T_a_b(0.5, 0.1, 0.03);
   std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
   // b saw only the middle part of the corridor.
   std::erase_if(points_b, [](const Eigen::Vector2d& p) { return std::abs(p.x()) > 3.0; });
-  const PriorSearchResult result =
-      SearchAroundPrior(points_b, distance, Pose2(1.5, 0.0, 0.0), 2.5, 0.1, PriorSearchOptions{});
-  EXPECT_GT(result.score, 0.9);
-  EXPECT_FALSE(result.ok) << result.score << " " << result.rival;
+  // The prediction is 1 m off along the corridor, 0.6 m across it and 0.06 rad.
+  const Pose2 prior = Pose2(1.0, -0.6, 0.0) * T_a_b * Pose2(0.0, 0.0, -0.06);
+  PriorSearchOptions refuse;
+  refuse.ridge_closures = false;
+  const PriorSearchResult refused = SearchAroundPrior(points_b, distance, prior, 2.5, 0.1, refuse);
+  EXPECT_GT(refused.score, 0.9);
+  EXPECT_FALSE(refused.ok) << refused.score << " " << refused.rival;
+  EXPECT_FALSE(refused.ridge);
+
+  const PriorSearchOptions options;
+  for (const bool exhaustive : {false, true}) {
+    const PriorSearchResult result =
+        exhaustive ? SearchAroundPriorExhaustive(points_b, distance, prior, 2.5, 0.1, options)
+                   : SearchAroundPrior(points_b, distance, prior, 2.5, 0.1, options);
+    ASSERT_TRUE(result.ok) << exhaustive << ": " << result.score << " " << result.off_ridge;
+    EXPECT_TRUE(result.ridge);
+    EXPECT_GT(result.rival, options.max_ambiguity * result.score);
+    EXPECT_LE(result.off_ridge, options.max_ambiguity * result.score);
+    EXPECT_NEAR(std::abs(result.ridge_axis.x()), 1.0, 1e-9) << result.ridge_axis.transpose();
+    EXPECT_NEAR(result.ridge_axis.norm(), 1.0, 1e-12);
+    // Across the corridor and in rotation, the best pose of the grid is within a step.
+    EXPECT_LT(std::abs(result.T_a_b.y() - T_a_b.y()), options.linear_step);
+    EXPECT_LT(std::abs(NormalizeAngle(result.T_a_b.theta() - T_a_b.theta())), options.angular_step);
+  }
+}
+
+// Two identical corridors side by side: the rival across is a second place, not a ridge.
+TEST(PriorSearch, RefusesParallelCorridorsAsAmbiguous) {
+  Grid2D<std::uint8_t> obstacles = Corridor();
+  for (int i = 0; i < 240; ++i) {
+    obstacles(i, 160) = 1;
+    obstacles(i, 200) = 1;
+  }
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  const Pose2 T_a_b(0.5, 0.0, 0.0);
+  std::vector<Eigen::Vector2d> points_b = PointsSeenFrom(obstacles, T_a_b);
+  // b saw the first corridor only.
+  std::erase_if(points_b, [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d q = T_a_b * p;
+    return std::abs(p.x()) > 3.0 || q.y() > 1.1;
+  });
+  const Pose2 prior = Pose2(0.4, 1.4, 0.0) * T_a_b;
+  for (const bool exhaustive : {false, true}) {
+    const PriorSearchResult result =
+        exhaustive ? SearchAroundPriorExhaustive(points_b, distance, prior, 3.5, 0.1, {})
+                   : SearchAroundPrior(points_b, distance, prior, 3.5, 0.1, {});
+    EXPECT_GT(result.score, 0.9) << exhaustive;
+    EXPECT_FALSE(result.ok) << exhaustive << ": " << result.score << " " << result.off_ridge;
+    EXPECT_FALSE(result.ridge) << exhaustive;
+    EXPECT_GT(result.off_ridge, 0.85 * result.score) << exhaustive;
+  }
 }
 
 // Branch and bound finds the exhaustive search's best score to the last bit (its leaves sum the
@@ -118,6 +168,7 @@ TEST(PriorSearch, BranchAndBoundFindsTheExhaustiveBest) {
   long scored = 0;
   long poses = 0;
   int accepted = 0;
+  int ridges = 0;
   for (int trial = 0; trial < 24; ++trial) {
     const Grid2D<std::uint8_t> obstacles = trial % 3 == 2 ? Corridor() : Room();
     const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
@@ -137,6 +188,11 @@ TEST(PriorSearch, BranchAndBoundFindsTheExhaustiveBest) {
     ASSERT_EQ(fast.poses, exhaustive.poses) << trial;
     EXPECT_EQ(fast.ok, exhaustive.ok)
         << trial << ": " << exhaustive.score << " " << exhaustive.rival;
+    EXPECT_EQ(fast.ridge, exhaustive.ridge) << trial;
+    ridges += exhaustive.ridge ? 1 : 0;
+    if (fast.ridge && exhaustive.ridge) {
+      EXPECT_NEAR(std::abs(fast.ridge_axis.dot(exhaustive.ridge_axis)), 1.0, 1e-9) << trial;
+    }
     if (exhaustive.score >= options.min_score) {
       EXPECT_EQ(fast.score, exhaustive.score) << trial;
     } else {
@@ -152,6 +208,7 @@ TEST(PriorSearch, BranchAndBoundFindsTheExhaustiveBest) {
     poses += fast.poses;
   }
   EXPECT_GE(accepted, 8);
+  EXPECT_GE(ridges, 1);
   EXPECT_LT(scored, poses / 4);
 }
 

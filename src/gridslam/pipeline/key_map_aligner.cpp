@@ -1,6 +1,7 @@
 #include "gridslam/pipeline/key_map_aligner.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -118,6 +119,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   const double window_theta = search.WindowTheta(uncertainty_distance);
   Pose2 start = T_i_k;
   bool searched = false;
+  std::optional<Eigen::Vector2d> free_axis;
+  double free_sigma = 0.0;
   if (search.enabled && window > search.min_window_xy) {
     ++counters_.prior_searches;
     const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
@@ -132,6 +135,10 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     }
     start = found.T_a_b;
     searched = true;
+    if (found.ridge) {
+      free_axis = found.ridge_axis;
+      free_sigma = window / std::sqrt(3.0);
+    }
   }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
       RefinementPoints(b, geometry_b, options_.refinement.min_points), geometry_a.distance, start,
@@ -141,10 +148,19 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
                        refined.inlier_fraction);
     return std::nullopt;
   }
-  // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(refined.hessian.topLeftCorner<2, 2>());
-  if (eig.eigenvalues()(0) < options_.prior_min_constraint * eig.eigenvalues()(1)) {
-    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained", i, k);
+  // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it,
+  // unless the search found it a ridge along that direction; then the direction across the
+  // ridge must be constrained.
+  const Eigen::Matrix2d hessian_xy = refined.hessian.topLeftCorner<2, 2>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(hessian_xy);
+  const double weakest =
+      free_axis.has_value()
+          ? Eigen::Vector2d(-free_axis->y(), free_axis->x())
+                .dot(hessian_xy * Eigen::Vector2d(-free_axis->y(), free_axis->x()))
+          : eig.eigenvalues()(0);
+  if (weakest < options_.prior_min_constraint * eig.eigenvalues()(1)) {
+    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained{}", i, k,
+                       free_axis.has_value() ? " across the ridge" : "");
     return std::nullopt;
   }
   const matching::VerificationResult verified = matching::VerifyAlignment(
@@ -158,7 +174,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     return std::nullopt;
   }
   ++counters_.prior_refined;
-  return Alignment{refined.T_a_b, searched};
+  counters_.prior_ridges += free_axis.has_value() ? 1 : 0;
+  return Alignment{refined.T_a_b, searched, free_axis, free_sigma};
 }
 
 }  // namespace gridslam::pipeline

@@ -26,6 +26,10 @@ struct Alignment {
   /// Found by the correlative search around the prediction: never trusted alone (the arbiter
   /// treats it as outside the gate).
   bool from_search = false;
+  /// Set for a ridge (a corridor, a straight road: the search's rivals all lie on one line): the
+  /// direction, unit, in i's frame, along which T_i_k's translation is not measured.
+  std::optional<Eigen::Vector2d> free_axis = std::nullopt;
+  double free_sigma = 0.0;  ///< Standard deviation along free_axis (Match::free_sigma) [m].
 };
 
 class Aligner {
@@ -42,6 +46,7 @@ struct AlignerCounters {
   long verified = 0;             ///< Alignments accepted by matching + verification.
   long prior_refined = 0;        ///< Found by refinement from the prediction.
   long prior_searches = 0;       ///< Correlative searches around the prediction.
+  long prior_ridges = 0;         ///< ... of them accepted as ridges (refined and verified).
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
 };
 

@@ -11,12 +11,14 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "gridslam/common/check.hpp"
 #include "gridslam/description/key_map_cells.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/loop_closure/closure_arbiter.hpp"
@@ -61,6 +63,31 @@ inline Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) {
   return Eigen::Vector3d(1.0 / (sigma_xy * sigma_xy), 1.0 / (sigma_xy * sigma_xy),
                          1.0 / (sigma_theta * sigma_theta))
       .asDiagonal();
+}
+
+/// The information of a loop edge: Information(sigma_xy, sigma_theta), and along a ridge's free
+/// axis only what the search window tells (1 / free_sigma^2), so the edge stays positive definite
+/// but all but free along the axis. The edge's translation error is in the frame of k as measured
+/// (g2o's convention, pose_graph/edge_error.hpp), where the axis (given in i's frame) is
+/// R(T_i_k)^T free_axis.
+inline Eigen::Matrix3d LoopInformation(const loop_closure::Match& match, double sigma_xy,
+                                       double sigma_theta) {
+  Eigen::Matrix3d information = Information(sigma_xy, sigma_theta);
+  if (match.free_axis.has_value()) {
+    GRIDSLAM_CHECK(match.free_sigma > 0.0) << match.free_sigma;
+    const Eigen::Vector2d axis = match.T_i_k.Rotation().transpose() * *match.free_axis;
+    const Eigen::Matrix2d along = axis * axis.transpose();
+    information.topLeftCorner<2, 2>() =
+        (Eigen::Matrix2d::Identity() - along) / (sigma_xy * sigma_xy) +
+        along / (match.free_sigma * match.free_sigma);
+  }
+  return information;
+}
+
+/// A loop edge's weight in the uncertainty distance: `loop_uncertainty` [m], or infinite for a
+/// ridge, whose position along its free axis is as uncertain as before.
+inline double LoopUncertaintyWeight(const loop_closure::Match& match, double loop_uncertainty) {
+  return match.free_axis.has_value() ? std::numeric_limits<double>::infinity() : loop_uncertainty;
 }
 
 class KeyMapGraph : public loop_closure::GraphView {

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "gridslam/pose_graph/edge_error.hpp"
@@ -59,6 +60,34 @@ std::vector<Pose2> Square(double drift_per_key_map) {
     odom.push_back(odom.back() * Between(truth[v - 1], truth[v]) * Pose2(0, 0, drift_per_key_map));
   }
   return odom;
+}
+
+// A ridge's loop edge has only the search window's information along its free axis: moving k
+// along it (in i's frame) costs what a 5 m standard deviation says, moving it across what a full
+// closure costs.
+TEST(LoopInformation, ARidgeEdgeCostsNothingAlongItsFreeAxis) {
+  const Eigen::Vector2d axis = Eigen::Vector2d(1.0, 2.0).normalized();  // in i's frame
+  const Pose2 T_i_k(4.0, -1.0, 0.7);
+  const Match ridge{0, 1, T_i_k, axis, /*free_sigma=*/5.0};
+  const Eigen::Matrix3d information = LoopInformation(ridge, 0.03, 0.005);
+  EXPECT_TRUE(LoopInformation(Match{0, 1, T_i_k}, 0.03, 0.005).isApprox(kLoop));
+  const Pose2 X_i(1.0, 2.0, -0.4);
+  const Eigen::Vector3d z(T_i_k.x(), T_i_k.y(), T_i_k.theta());
+  const auto chi2 = [&](const Eigen::Vector2d& offset_in_i) {
+    const Pose2 X_k =
+        X_i * Pose2(T_i_k.x() + offset_in_i.x(), T_i_k.y() + offset_in_i.y(), T_i_k.theta());
+    const Eigen::Vector3d e = pose_graph::EdgeError(Eigen::Vector3d(X_i.x(), X_i.y(), X_i.theta()),
+                                                    Eigen::Vector3d(X_k.x(), X_k.y(), X_k.theta()),
+                                                    z, std::cos(z.z()), std::sin(z.z()));
+    return e.dot(information * e);
+  };
+  EXPECT_NEAR(chi2(Eigen::Vector2d::Zero()), 0.0, 1e-12);
+  EXPECT_NEAR(chi2(2.5 * axis), 2.5 * 2.5 / (5.0 * 5.0), 1e-9);
+  EXPECT_GT(information.determinant(), 0.0);
+  const Eigen::Vector2d across(-axis.y(), axis.x());
+  EXPECT_NEAR(chi2(0.1 * across), 0.1 * 0.1 / (0.03 * 0.03), 1e-6);
+  EXPECT_TRUE(std::isinf(LoopUncertaintyWeight(ridge, 0.5)));
+  EXPECT_EQ(LoopUncertaintyWeight(Match{0, 1, T_i_k}, 0.5), 0.5);
 }
 
 TEST(KeyMapGraph, ChainsEstimatesFromTheFrontEndAndAnchorsEachRobot) {

@@ -253,6 +253,7 @@ void Mapper::Impl::SyncStats() {
   stats.verified = counters.verified;
   stats.prior_refined = counters.prior_refined;
   stats.prior_searches = counters.prior_searches;
+  stats.prior_ridges = counters.prior_ridges;
   stats.geometry_recomputed = counters.geometry_recomputed;
   stats.accepted = graph.loop_edges_added();
   stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);

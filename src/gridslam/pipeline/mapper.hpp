@@ -53,6 +53,7 @@ struct MapperStats {
   long prior_refined = 0;  ///< Of which: found by refinement from the prediction (no features).
   long online_full_optimizations = 0;  ///< After closures correcting beyond the gate floor.
   long prior_searches = 0;  ///< Correlative searches around the prediction (prior_search.hpp).
+  long prior_ridges = 0;    ///< Of which: aligned as ridges (position along a line unmeasured).
   long accepted = 0;        ///< Loop edges added.
   long rejected_gate = 0;
   long pruned = 0;

@@ -19,7 +19,6 @@ using loop_closure::Verdict;
 
 PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
   const loop_closure::LoopClosureOptions& lc = options.loop_closure;
-  const Eigen::Matrix3d information = Information(lc.sigma_xy, lc.sigma_theta);
   // Uncertainty distances of the key maps that can be candidates: those within the largest
   // search radius (a little more: CandidateSelector measures the distance in k's frame), so the
   // search costs what the neighbourhood of k costs, not what the whole graph does.
@@ -49,7 +48,7 @@ PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
                          ToSeconds(graph.node(i).time), ToSeconds(graph.node(k).time), u);
       continue;
     }
-    const Match match{i, k, measured->T_i_k};
+    const Match match{i, k, measured->T_i_k, measured->free_axis, measured->free_sigma};
     const Decision decision = arbiter.OfferPrior(match, u, measured->from_search, graph);
     const Pose2& error = decision.error;
     GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
@@ -65,10 +64,16 @@ PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
       GRIDSLAM_LOG_DEBUG("closure {}-{} accepted with {} consistent gated closures", i, k,
                          decision.accepted.size() - 1);
     }
-    graph.AddLoopEdge(decision.accepted.front(), ClosureOutcome::kAccepted, /*appearance=*/false,
-                      information, options.graph.loop_uncertainty);
-    for (std::size_t m = 1; m < decision.accepted.size(); ++m) {
-      graph.AcceptGated(decision.accepted[m], information, options.graph.loop_uncertainty);
+    for (std::size_t m = 0; m < decision.accepted.size(); ++m) {
+      const Match& accepted = decision.accepted[m];
+      const Eigen::Matrix3d information = LoopInformation(accepted, lc.sigma_xy, lc.sigma_theta);
+      const double weight = LoopUncertaintyWeight(accepted, options.graph.loop_uncertainty);
+      if (m == 0) {
+        graph.AddLoopEdge(accepted, ClosureOutcome::kAccepted, /*appearance=*/false, information,
+                          weight);
+      } else {
+        graph.AcceptGated(accepted, information, weight);
+      }
     }
     // Only closures that disagree with the estimate make online optimization worth its cost.
     // A closure correcting the estimate by more than the gate's floor: a few SGD iterations
