@@ -92,32 +92,10 @@ map_bag() {
 
   echo "ros_node_test: $name: rosbag play -r $rate $(basename "$bag") ($scans scans)"
   local start=$SECONDS
-  # Every scan must reach the node, however loaded the machine is: the player waits 5 s after
-  # advertising a topic (-d; its default 0.2 s lost the bag's first scans to a subscriber that
-  # connected late), and stays alive after the bag's end (-k: a player that exits drops what its
-  # queue still holds for a subscriber that fell behind). The node has them all once ~save_map
-  # reports as many scans received as the bag holds; the player is stopped then. Polled from the
-  # bag's playing time on, for at most 300 s more. (A failure's cleanup stops the player.)
-  ros_session_spawn "$dir/play.log" rosbag play -k -d 5 --clock -q --queue=100000 -r "$rate" "$bag"
-  local play_pid="$ROS_SESSION_PID"
-  local playing=$(( ${duration:-0} / rate ))
-  sleep "$playing"
-  local reply received=""
-  while :; do
-    reply=$(timeout 120 rosservice call /gridslam_node/save_map 2>&1) ||
-      { echo "$reply"; fail "$name: ~save_map call"; }
-    grep -q "success: True" <<< "$reply" || { echo "$reply"; fail "$name: ~save_map failed"; }
-    # the message begins "N scans received; " (rosservice may fold a long one, with backslashes)
-    received=$(tr -d '\\' <<< "$reply" | tr -s ' \n' '  ' |
-      sed -n 's/.*message: "\([0-9]*\) scans received;.*/\1/p')
-    [ "$received" = "$scans" ] && break
-    kill -0 "$play_pid" 2> /dev/null ||
-      { show_log "$dir/play.log"; fail "$name: rosbag play exited ($received of $scans scans)"; }
-    [ $((SECONDS - start)) -lt $((playing + 300)) ] ||
-      fail "$name: the node received $received of the bag's $scans scans"
-    sleep 2
-  done
-  ros_session_end "$play_pid"
+  # every scan must reach the node (scripts/lib/ros_session.sh); a failure's cleanup stops the
+  # player
+  ros_session_play_all "$dir/play.log" "$bag" "$rate" "$scans" $(( ${duration:-0} / rate )) ||
+    fail "$name: not every scan reached the node"
   echo "ros_node_test: $name: played in $((SECONDS - start)) s, every scan received"
   [ -s "$dir/out/map.pgm" ] && grep -q "^image: map.pgm" "$dir/out/map.yaml" ||
     fail "$name: ~save_map wrote no map.pgm + map.yaml"

@@ -7,6 +7,9 @@
 #   ros_session_start DIR               roscore; logs and ROS_HOME under DIR
 #   ros_session_spawn LOG CMD...        CMD in the background, output to LOG; sets ROS_SESSION_PID
 #   ros_session_wait_service NAME SECS  until the service exists (1 on timeout)
+#   ros_session_play_all LOG BAG RATE SCANS SECS
+#                                       plays BAG until gridslam_node has every one of its SCANS
+#                                       scans (1, with the reason, if not within SECS s)
 #   ros_session_stop                    SIGINT, then SIGKILL after 10 s, to everything started
 
 ROS_SESSION_PIDS=()
@@ -58,6 +61,42 @@ ros_session_wait_service() {
     sleep 0.5
   done
   return 1
+}
+
+# Every scan must reach the node, however loaded the machine is: the player waits 5 s after
+# advertising a topic (-d; its default 0.2 s lost the bag's first scans to a subscriber that
+# connected late), and stays alive after the bag's end (-k: a player that exits drops what its
+# queue still holds for a subscriber that fell behind). The node has them all once ~save_map
+# reports as many scans received as the bag holds ("N scans received; ..."); the player is
+# stopped then. Polled from the bag's playing time (SECS = its duration / RATE) on, for at most
+# 300 s more. Sets ROS_SESSION_RECEIVED to the last count read.
+ros_session_play_all() {
+  local log="$1" bag="$2" rate="$3" scans="$4" playing="$5"
+  ros_session_spawn "$log" rosbag play -k -d 5 --clock -q --queue=100000 -r "$rate" "$bag"
+  local play_pid="$ROS_SESSION_PID" start=$SECONDS reply
+  ROS_SESSION_RECEIVED=""
+  sleep "$playing"
+  while :; do
+    reply=$(timeout 120 rosservice call /gridslam_node/save_map 2>&1) ||
+      { echo "$reply"; echo "ros_session: ~save_map call failed"; return 1; }
+    grep -q "success: True" <<< "$reply" ||
+      { echo "$reply"; echo "ros_session: ~save_map failed"; return 1; }
+    # rosservice may fold a long message, with backslashes
+    ROS_SESSION_RECEIVED=$(tr -d '\\' <<< "$reply" | tr -s ' \n' '  ' |
+      sed -n 's/.*message: "\([0-9]*\) scans received;.*/\1/p')
+    [ "$ROS_SESSION_RECEIVED" = "$scans" ] && break
+    if ! kill -0 "$play_pid" 2> /dev/null; then
+      tail -n 20 "$log"
+      echo "ros_session: rosbag play exited ($ROS_SESSION_RECEIVED of $scans scans)"
+      return 1
+    fi
+    if [ $((SECONDS - start)) -ge $((playing + 300)) ]; then
+      echo "ros_session: the node received $ROS_SESSION_RECEIVED of the bag's $scans scans"
+      return 1
+    fi
+    sleep 2
+  done
+  ros_session_end "$play_pid"
 }
 
 # Ends one recorded process group: SIGINT (ROS shuts down cleanly), SIGKILL after 10 s.
