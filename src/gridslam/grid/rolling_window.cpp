@@ -94,10 +94,16 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
 }
 
 void RollingWindow::MarkChanged(std::size_t index) {
+  if (changes_overflow_) {
+    return;
+  }
   if (changed_.size() < kMaxListedChanges) {
     changed_.push_back(static_cast<std::int32_t>(index));
   } else {
+    // Every cell counts as changed now: the list is dropped, so that a window whose follower
+    // updates rarely (the front end's key-map window) does not filter a full list at every shift.
     changes_overflow_ = true;
+    changed_.clear();
   }
 }
 

@@ -87,7 +87,7 @@ class RollingWindow {
 
   /// Storage indices of the cells whose obstacle status changed since the last
   /// ClearChanges(), and the accumulated shift over that time; `changes_overflow` if too many to
-  /// list (then treat every cell as changed).
+  /// list (then treat every cell as changed; the list is empty).
   [[nodiscard]] const std::vector<std::int32_t>& ChangedCells() const { return changed_; }
   [[nodiscard]] const Eigen::Array2i& PendingShift() const { return pending_shift_; }
   [[nodiscard]] bool ChangesOverflow() const { return changes_overflow_; }
