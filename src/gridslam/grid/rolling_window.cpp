@@ -118,20 +118,13 @@ void RollingWindow::ApplyHit(std::size_t index) {
   }
 }
 
-// Inlined into the ray loop (TraceFree): one call per traversed cell otherwise costs a quarter
-// of the insertion time, and GCC stops inlining it on its own once the loop walks ring storage.
-inline __attribute__((always_inline)) void RollingWindow::ApplyMiss(std::size_t index) {
-  float& l = log_odds_.data()[index];
-  l = std::max(l + miss_, min_);
-  std::uint8_t& obstacle = obstacles_.data()[index];
-  if (obstacle != 0 && l <= occupied_) {
-    obstacle = 0;
-    --num_obstacles_;
-    if (track_surfaces_) {
-      surfaces_.data()[index] = CellSurface{};
-    }
-    MarkChanged(index);
+void RollingWindow::ClearObstacle(std::size_t index) {
+  obstacles_.data()[index] = 0;
+  --num_obstacles_;
+  if (track_surfaces_) {
+    surfaces_.data()[index] = CellSurface{};
   }
+  MarkChanged(index);
 }
 
 void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
@@ -145,10 +138,24 @@ void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d
   const Eigen::Array2i b = limits.CellIndex(clipped->second);
   // The end cell of a return is its hit cell; a ray cut at the border passes through its last cell.
   const bool include_end = !(to_is_hit && limits.Contains(limits.CellIndex(to)));
+  // The layers and constants in locals: the stores into the layers (a byte store may alias
+  // anything) would otherwise make the compiler reload every member at every cell.
+  std::uint32_t* const stamps = stamps_.data();
+  float* const log_odds = log_odds_.data();
+  const std::uint8_t* const obstacles = obstacles_.data();
+  const std::uint32_t stamp = stamp_;
+  const float miss = miss_;
+  const float min = min_;
+  const float occupied = occupied_;
   TraceLineInRing(Layout(), a, b, include_end, [&](std::size_t index) {
-    if (stamps_[index] != stamp_) {
-      stamps_[index] = stamp_;
-      ApplyMiss(index);
+    if (stamps[index] == stamp) {
+      return;
+    }
+    stamps[index] = stamp;
+    float& l = log_odds[index];
+    l = std::max(l + miss, min);
+    if (obstacles[index] != 0 && l <= occupied) {
+      ClearObstacle(index);
     }
   });
 }

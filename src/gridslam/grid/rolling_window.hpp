@@ -103,7 +103,8 @@ class RollingWindow {
 
  private:
   void ApplyHit(std::size_t index);
-  void ApplyMiss(std::size_t index);
+  /// A miss took the cell's probability to or below occupied_probability.
+  void ClearObstacle(std::size_t index);
   void MarkChanged(std::size_t index);
   void TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to, bool to_is_hit);
 
