@@ -73,8 +73,9 @@ constexpr std::int32_t kNoSource = -1;
 /// "A general algorithm for computing distance transforms in linear time"): `f` holds the squared
 /// column distances (kNoSource: none), `d` receives min_p (x - p)^2 + f[p]. The lower envelope is
 /// kept as the first integer column each parabola wins, so no division is rounded; the minimum is
-/// the same number the float envelope of SquaredDistance1D finds.
-void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
+/// the same number the float envelope of SquaredDistance1D finds. False when the row has no
+/// source (then `d` is +inf and `arg` untouched).
+bool SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
                         std::int32_t* first) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
@@ -108,10 +109,7 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
   }
   if (k < 0) {
     std::fill(d, d + n, kInfinity);
-    if (arg != nullptr) {
-      std::fill(arg, arg + n, -1);
-    }
-    return;
+    return false;  // `arg` untouched
   }
   for (int e = 0; e <= k; ++e) {
     const int end = e < k ? first[e + 1] : n;
@@ -125,6 +123,7 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
       std::fill(arg + first[e], arg + end, static_cast<std::int32_t>(p));
     }
   }
+  return true;
 }
 
 }  // namespace
@@ -223,8 +222,15 @@ void IntegerTransformRows(const std::uint8_t* is_source, int width, int height, 
   for (int j = 0; j < rows; ++j) {
     const std::size_t offset = static_cast<std::size_t>(j) * w;
     float* d = out.squared.data() + offset;
-    SquaredDistanceRow(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr, v.data(),
-                       first.data());
+    if (!SquaredDistanceRow(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr,
+                            v.data(), first.data())) {
+      // No source near the row (frequent in the small regions a field updates): nothing to label
+      // or truncate.
+      if (with_nearest) {
+        std::fill_n(out.nearest.data() + offset, w, -1);
+      }
+      continue;
+    }
     if (with_nearest) {
       int32_t* nearest = out.nearest.data() + offset;
       for (std::size_t i = 0; i < w; ++i) {
