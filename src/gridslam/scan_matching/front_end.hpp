@@ -131,8 +131,10 @@ class FrontEnd {
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
   /// field_, brought up to date with window_ first. Only matches in window_ read it (without a
   /// separate matching window, or without odometry), so it follows the window's changes when one
-  /// does, as matching_field_ does: one update over several scans' changes is exact, the same
-  /// field as one update per scan (matching_field.hpp).
+  /// does, as matching_field_ does: one update over several scans' changes gives the same
+  /// distances as one per scan (a label may name another obstacle at the same distance; the
+  /// distance-field residual reads only the distances, and without a separate matching window,
+  /// where point_to_line reads the labels, the updates come at the same frames as before).
   [[nodiscard]] const MatchingField& NearField();
   /// Which local map a match uses.
   enum class WindowPolicy {
