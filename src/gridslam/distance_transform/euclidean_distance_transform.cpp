@@ -73,8 +73,9 @@ constexpr std::int32_t kNoSource = -1;
 /// "A general algorithm for computing distance transforms in linear time"): `f` holds the squared
 /// column distances (kNoSource: none), `d` receives min_p (x - p)^2 + f[p]. The lower envelope is
 /// kept as the first integer column each parabola wins, so no division is rounded; the minimum is
-/// the same number the float envelope of SquaredDistance1D finds.
-void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
+/// the same number the float envelope of SquaredDistance1D finds. False when the row has no
+/// source (then `d` is +inf and `arg` untouched).
+bool SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
                         std::int32_t* first) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
@@ -108,10 +109,7 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
   }
   if (k < 0) {
     std::fill(d, d + n, kInfinity);
-    if (arg != nullptr) {
-      std::fill(arg, arg + n, -1);
-    }
-    return;
+    return false;  // `arg` untouched
   }
   for (int e = 0; e <= k; ++e) {
     const int end = e < k ? first[e + 1] : n;
@@ -125,26 +123,22 @@ void SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
       std::fill(arg + first[e], arg + end, static_cast<std::int32_t>(p));
     }
   }
+  return true;
 }
 
 }  // namespace
 
-void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width, int height,
-                                       SquaredDistanceField& out, bool with_nearest,
-                                       float max_distance) {
-  GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
-  // On grids whose squared distances are exact in floats: the integer row pass (the same
-  // distances and nearest sources, about twice as fast; SquaredEuclideanDistanceTransformFloat is
-  // the float envelope it is tested against).
-  constexpr int kExactSide = 4096;
-  if (width > kExactSide || height > kExactSide) {
-    SquaredEuclideanDistanceTransformFloat(is_source, width, height, out, with_nearest,
-                                           max_distance);
-    return;
-  }
-  const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+namespace {
+
+// The integer transform of rows [row0, row1) of the grid into `out` (row1 - row0 rows; labels
+// index the whole grid). The column pass reads every row but keeps only the rows asked for; the
+// row pass runs on those alone.
+void IntegerTransformRows(const std::uint8_t* is_source, int width, int height, int row0, int row1,
+                          SquaredDistanceField& out, bool with_nearest, float max_distance) {
+  const int rows = row1 - row0;
+  const auto num_cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
   out.width = width;
-  out.height = height;
+  out.height = rows;
   out.squared.resize(num_cells);
   if (with_nearest) {
     out.nearest.resize(num_cells);
@@ -173,26 +167,39 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
   }
   // Column pass: rows of the nearest source at or below (forward), then the nearer of that and
   // the nearest at or above (backward; ties to the lower row, as the float version); g holds the
-  // squared vertical distance, source_row that source's row (with labels).
-  for (int j = 0; j < height; ++j) {
+  // squared vertical distance, source_row that source's row (with labels). Rows outside
+  // [row0, row1) only move the nearest source along.
+  for (int j = 0; j < row0; ++j) {
     const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
-    int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
+    for (std::size_t i = 0; i < w; ++i) {
+      last[i] = src[i] != 0 ? j : last[i];
+    }
+  }
+  for (int j = row0; j < row1; ++j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = g.data() + static_cast<std::size_t>(j - row0) * w;
     for (std::size_t i = 0; i < w; ++i) {
       last[i] = src[i] != 0 ? j : last[i];
       row[i] = j - last[i];
     }
   }
   std::fill(last.begin(), last.end(), kFar);
-  for (int j = height - 1; j >= 0; --j) {
+  for (int j = height - 1; j >= row1; --j) {
     const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
-    int32_t* row = g.data() + static_cast<std::size_t>(j) * w;
+    for (std::size_t i = 0; i < w; ++i) {
+      last[i] = src[i] != 0 ? j : last[i];
+    }
+  }
+  for (int j = row1 - 1; j >= row0; --j) {
+    const std::uint8_t* src = is_source + static_cast<std::size_t>(j) * w;
+    int32_t* row = g.data() + static_cast<std::size_t>(j - row0) * w;
     if (with_nearest) {
-      int32_t* rows = source_row.data() + static_cast<std::size_t>(j) * w;
+      int32_t* rows_of = source_row.data() + static_cast<std::size_t>(j - row0) * w;
       for (std::size_t i = 0; i < w; ++i) {
         last[i] = src[i] != 0 ? j : last[i];
         const int32_t below = row[i];
         const int32_t above = last[i] - j;
-        rows[i] = below <= above ? j - below : last[i];
+        rows_of[i] = below <= above ? j - below : last[i];
         const int32_t best = std::min(below, above);
         const auto bf = static_cast<float>(best);
         row[i] = best >= kFar / 2 || !(bf * bf <= max_squared) ? kNoSource : best * best;
@@ -212,11 +219,18 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
       }
     }
   }
-  for (int j = 0; j < height; ++j) {
+  for (int j = 0; j < rows; ++j) {
     const std::size_t offset = static_cast<std::size_t>(j) * w;
     float* d = out.squared.data() + offset;
-    SquaredDistanceRow(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr, v.data(),
-                       first.data());
+    if (!SquaredDistanceRow(g.data() + offset, width, d, with_nearest ? arg.data() : nullptr,
+                            v.data(), first.data())) {
+      // No source near the row (frequent in the small regions a field updates): nothing to label
+      // or truncate.
+      if (with_nearest) {
+        std::fill_n(out.nearest.data() + offset, w, -1);
+      }
+      continue;
+    }
     if (with_nearest) {
       int32_t* nearest = out.nearest.data() + offset;
       for (std::size_t i = 0; i < w; ++i) {
@@ -235,6 +249,46 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
       }
     }
   }
+}
+
+// On grids whose squared distances are exact in floats: the integer row pass (the same
+// distances and nearest sources, about twice as fast; SquaredEuclideanDistanceTransformFloat is
+// the float envelope it is tested against).
+constexpr int kExactSide = 4096;
+
+}  // namespace
+
+void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width, int height,
+                                       SquaredDistanceField& out, bool with_nearest,
+                                       float max_distance) {
+  GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
+  if (width > kExactSide || height > kExactSide) {
+    SquaredEuclideanDistanceTransformFloat(is_source, width, height, out, with_nearest,
+                                           max_distance);
+    return;
+  }
+  IntegerTransformRows(is_source, width, height, 0, height, out, with_nearest, max_distance);
+}
+
+void SquaredEuclideanDistanceTransformRows(const std::uint8_t* is_source, int width, int height,
+                                           int row0, int row1, SquaredDistanceField& out,
+                                           bool with_nearest, float max_distance) {
+  GRIDSLAM_CHECK(width >= 0 && height >= 0) << width << "x" << height;
+  GRIDSLAM_CHECK(0 <= row0 && row0 <= row1 && row1 <= height)
+      << "rows [" << row0 << ", " << row1 << ") of " << height;
+  if (width <= kExactSide && height <= kExactSide) {
+    IntegerTransformRows(is_source, width, height, row0, row1, out, with_nearest, max_distance);
+    return;
+  }
+  SquaredEuclideanDistanceTransformFloat(is_source, width, height, out, with_nearest, max_distance);
+  const auto w = static_cast<std::ptrdiff_t>(width);
+  out.squared.erase(out.squared.begin() + row1 * w, out.squared.end());
+  out.squared.erase(out.squared.begin(), out.squared.begin() + row0 * w);
+  if (with_nearest) {
+    out.nearest.erase(out.nearest.begin() + row1 * w, out.nearest.end());
+    out.nearest.erase(out.nearest.begin(), out.nearest.begin() + row0 * w);
+  }
+  out.height = row1 - row0;
 }
 
 void SquaredEuclideanDistanceTransformFloat(const std::uint8_t* is_source, int width, int height,

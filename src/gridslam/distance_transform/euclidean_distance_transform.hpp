@@ -44,6 +44,15 @@ void SquaredEuclideanDistanceTransform(const std::uint8_t* is_source, int width,
                                        SquaredDistanceField& out, bool with_nearest = false,
                                        float max_distance = kInfinity);
 
+/// Rows [row0, row1) of SquaredEuclideanDistanceTransform (0 <= row0 <= row1 <= height): the
+/// same distances and labels (labels index the whole grid), `out` holding row1 - row0 rows of
+/// `width` cells. The row pass runs on those rows alone (a field updating a region from the
+/// sources around it needs the region's rows only).
+void SquaredEuclideanDistanceTransformRows(const std::uint8_t* is_source, int width, int height,
+                                           int row0, int row1, SquaredDistanceField& out,
+                                           bool with_nearest = false,
+                                           float max_distance = kInfinity);
+
 /// The same transform with the float lower envelope of SquaredDistance1D on every row (F&H): what
 /// SquaredEuclideanDistanceTransform computes with integers on grids up to 4096 cells a side
 /// (the same distances and labels, tested), and uses beyond.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -152,6 +153,46 @@ TEST(SquaredEuclideanDistanceTransform, IntegerAndFloatEnvelopesGiveTheSameDista
     cells += static_cast<long>(src.size());
   }
   EXPECT_GT(cells, 1'000'000);
+}
+
+// A band of rows (what the matching field recomputes around a change) holds the numbers of the
+// same rows of the whole transform, labels included, whatever the band, the truncation and the
+// grid.
+TEST(SquaredEuclideanDistanceTransform, RowsAreThoseOfTheWholeTransform) {
+  std::mt19937 rng(13);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int w = std::uniform_int_distribution<int>(1, 120)(rng);
+    const int h = std::uniform_int_distribution<int>(1, 120)(rng);
+    const double density = std::pow(10.0, std::uniform_real_distribution<double>(-3.0, -0.3)(rng));
+    const std::vector<std::uint8_t> src = RandomGrid(w, h, density, rng);
+    const float max_distance =
+        trial % 3 == 0 ? kInfinity : std::uniform_real_distribution<float>(0.5F, 30.0F)(rng);
+    int row0 = std::uniform_int_distribution<int>(0, h)(rng);
+    int row1 = std::uniform_int_distribution<int>(0, h)(rng);
+    if (row0 > row1) {
+      std::swap(row0, row1);
+    }
+    for (const bool labels : {false, true}) {
+      SquaredDistanceField whole;
+      SquaredDistanceField band;
+      SquaredEuclideanDistanceTransform(src.data(), w, h, whole, labels, max_distance);
+      SquaredEuclideanDistanceTransformRows(src.data(), w, h, row0, row1, band, labels,
+                                            max_distance);
+      ASSERT_EQ(band.width, w);
+      ASSERT_EQ(band.height, row1 - row0);
+      const auto offset = static_cast<std::size_t>(row0) * static_cast<std::size_t>(w);
+      ASSERT_EQ(band.squared.size(), static_cast<std::size_t>(row1 - row0) * w);
+      ASSERT_EQ(band.nearest.size(), labels ? band.squared.size() : 0);
+      for (std::size_t k = 0; k < band.squared.size(); ++k) {
+        ASSERT_EQ(band.squared[k], whole.squared[offset + k])
+            << "trial " << trial << " " << w << "x" << h << " rows " << row0 << "-" << row1;
+      }
+      for (std::size_t k = 0; k < band.nearest.size(); ++k) {
+        ASSERT_EQ(band.nearest[k], whole.nearest[offset + k])
+            << "trial " << trial << " " << w << "x" << h << " rows " << row0 << "-" << row1;
+      }
+    }
+  }
 }
 
 TEST(DistanceTransformCells, AgreesWithOpenCvPrecise) {

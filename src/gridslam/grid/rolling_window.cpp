@@ -94,10 +94,16 @@ Eigen::Array2i RollingWindow::Recentre(const Eigen::Vector2d& p_odom) {
 }
 
 void RollingWindow::MarkChanged(std::size_t index) {
+  if (changes_overflow_) {
+    return;
+  }
   if (changed_.size() < kMaxListedChanges) {
     changed_.push_back(static_cast<std::int32_t>(index));
   } else {
+    // Every cell counts as changed now: the list is dropped, so that a window whose follower
+    // updates rarely (the front end's key-map window) does not filter a full list at every shift.
     changes_overflow_ = true;
+    changed_.clear();
   }
 }
 
@@ -112,20 +118,13 @@ void RollingWindow::ApplyHit(std::size_t index) {
   }
 }
 
-// Inlined into the ray loop (TraceFree): one call per traversed cell otherwise costs a quarter
-// of the insertion time, and GCC stops inlining it on its own once the loop walks ring storage.
-inline __attribute__((always_inline)) void RollingWindow::ApplyMiss(std::size_t index) {
-  float& l = log_odds_.data()[index];
-  l = std::max(l + miss_, min_);
-  std::uint8_t& obstacle = obstacles_.data()[index];
-  if (obstacle != 0 && l <= occupied_) {
-    obstacle = 0;
-    --num_obstacles_;
-    if (track_surfaces_) {
-      surfaces_.data()[index] = CellSurface{};
-    }
-    MarkChanged(index);
+void RollingWindow::ClearObstacle(std::size_t index) {
+  obstacles_.data()[index] = 0;
+  --num_obstacles_;
+  if (track_surfaces_) {
+    surfaces_.data()[index] = CellSurface{};
   }
+  MarkChanged(index);
 }
 
 void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
@@ -139,10 +138,24 @@ void RollingWindow::TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d
   const Eigen::Array2i b = limits.CellIndex(clipped->second);
   // The end cell of a return is its hit cell; a ray cut at the border passes through its last cell.
   const bool include_end = !(to_is_hit && limits.Contains(limits.CellIndex(to)));
+  // The layers and constants in locals: the stores into the layers (a byte store may alias
+  // anything) would otherwise make the compiler reload every member at every cell.
+  std::uint32_t* const stamps = stamps_.data();
+  float* const log_odds = log_odds_.data();
+  const std::uint8_t* const obstacles = obstacles_.data();
+  const std::uint32_t stamp = stamp_;
+  const float miss = miss_;
+  const float min = min_;
+  const float occupied = occupied_;
   TraceLineInRing(Layout(), a, b, include_end, [&](std::size_t index) {
-    if (stamps_[index] != stamp_) {
-      stamps_[index] = stamp_;
-      ApplyMiss(index);
+    if (stamps[index] == stamp) {
+      return;
+    }
+    stamps[index] = stamp;
+    float& l = log_odds[index];
+    l = std::max(l + miss, min);
+    if (obstacles[index] != 0 && l <= occupied) {
+      ClearObstacle(index);
     }
   });
 }

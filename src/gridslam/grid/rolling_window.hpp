@@ -87,7 +87,7 @@ class RollingWindow {
 
   /// Storage indices of the cells whose obstacle status changed since the last
   /// ClearChanges(), and the accumulated shift over that time; `changes_overflow` if too many to
-  /// list (then treat every cell as changed).
+  /// list (then treat every cell as changed; the list is empty).
   [[nodiscard]] const std::vector<std::int32_t>& ChangedCells() const { return changed_; }
   [[nodiscard]] const Eigen::Array2i& PendingShift() const { return pending_shift_; }
   [[nodiscard]] bool ChangesOverflow() const { return changes_overflow_; }
@@ -103,7 +103,8 @@ class RollingWindow {
 
  private:
   void ApplyHit(std::size_t index);
-  void ApplyMiss(std::size_t index);
+  /// A miss took the cell's probability to or below occupied_probability.
+  void ClearObstacle(std::size_t index);
   void MarkChanged(std::size_t index);
   void TraceFree(const Eigen::Vector2d& from, const Eigen::Vector2d& to, bool to_is_hit);
 

@@ -97,6 +97,30 @@ void GrazingWallNormal(const Eigen::Vector2d& before, const Eigen::Vector2d& poi
   quality = static_cast<float>(0.5 + 0.5 * (1.0 - deviation / tolerance));
 }
 
+// The unit directions of a scan's beams in the laser frame. A laser's scans share their beam
+// geometry, so the last geometry's directions are kept per thread: the same angles give the same
+// cosines and sines, without a sincos per beam and scan.
+const std::vector<Eigen::Vector2d>& BeamDirections(const LaserScan& scan) {
+  struct Cache {
+    double angle_min = 0.0;
+    double angle_increment = 0.0;
+    std::vector<Eigen::Vector2d> directions;
+  };
+  thread_local Cache cache;
+  const std::size_t n = scan.size();
+  if (cache.angle_min != scan.angle_min || cache.angle_increment != scan.angle_increment ||
+      cache.directions.size() != n) {
+    cache.angle_min = scan.angle_min;
+    cache.angle_increment = scan.angle_increment;
+    cache.directions.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double a = scan.Angle(k);
+      cache.directions[k] = Eigen::Vector2d(std::cos(a), std::sin(a));
+    }
+  }
+  return cache.directions;
+}
+
 }  // namespace
 
 ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, double max_range,
@@ -114,10 +138,10 @@ ScanPoints ExtractScanPoints(const LaserScan& scan, const Pose2& T_base_laser, d
   const std::size_t n = scan.size();
   std::vector<Eigen::Vector2d> laser_points(n);
   std::vector<char> hit(n, 0);
+  const std::vector<Eigen::Vector2d>& directions = BeamDirections(scan);
   for (std::size_t k = 0; k < n; ++k) {
     const double r = scan.ranges[k];
-    const double a = scan.Angle(k);
-    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    const Eigen::Vector2d& dir = directions[k];
     if (scan.IsHit(k)) {
       if (r <= max_range) {
         hit[k] = 1;

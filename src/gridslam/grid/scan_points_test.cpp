@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -35,6 +36,36 @@ TEST(ExtractScanPoints, AppliesTheMountingAndEstimatesNormals) {
   EXPECT_TRUE(points.no_return_directions[0].isApprox(Eigen::Vector2d(0.0, 1.0), 1e-9));
   const ScanPoints near = ExtractScanPoints(scan, T_base_laser, 2.01);
   EXPECT_LT(near.size(), points.size());
+}
+
+// The beam directions of the last geometry are reused: scans of other geometries in between, and
+// one of the same geometry again, give exactly the points computed afresh (Angle, cos, sin).
+TEST(ExtractScanPoints, ScansOfChangingGeometryGetTheirOwnBeamDirections) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> range(0.5F, 6.0F);
+  auto make = [&](double angle_min, double increment, int beams) {
+    LaserScan scan;
+    scan.angle_min = angle_min;
+    scan.angle_increment = increment;
+    scan.range_min = 0.05;
+    scan.range_max = 20.0;
+    for (int k = 0; k < beams; ++k) {
+      scan.ranges.push_back(range(rng));
+    }
+    return scan;
+  };
+  const std::vector<LaserScan> scans = {make(-1.5, 0.01, 181),  make(-1.5, 0.01, 181),
+                                        make(-1.49, 0.01, 181), make(-1.5, 0.01, 180),
+                                        make(-1.5, 0.02, 181),  make(-1.5, 0.01, 181)};
+  for (const LaserScan& scan : scans) {
+    const ScanPoints points = ExtractScanPoints(scan, Pose2(), 30.0);
+    ASSERT_EQ(points.size(), scan.size());
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      const double a = scan.Angle(k);
+      const double r = scan.ranges[k];
+      EXPECT_EQ(points.points[k], Eigen::Vector2d(r * std::cos(a), r * std::sin(a)));
+    }
+  }
 }
 
 // A wall y = 1 seen at 3..8 degrees: consecutive returns lie metres apart, beyond the normal

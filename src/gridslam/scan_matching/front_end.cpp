@@ -150,6 +150,14 @@ bool FrontEnd::ShouldInsert(const Frame& frame, const Pose2& pose) const {
          std::abs(ToSeconds(frame.corrected_time - last_insert_time_)) >= options_.insert_period;
 }
 
+const MatchingField& FrontEnd::NearField() {
+  const auto start = Clock::now();
+  field_.Update(*window_);
+  window_->ClearChanges();
+  stats_.seconds_field += SecondsSince(start);
+  return field_;
+}
+
 MatchResult FrontEnd::MatchInWindows(const ScanPoints& points, const Pose2& start,
                                      const Pose2& prior, const Eigen::Matrix3d& information,
                                      PriorKind kind, bool refine_only, WindowPolicy policy) {
@@ -169,12 +177,12 @@ MatchResult FrontEnd::MatchInWindows(const ScanPoints& points, const Pose2& star
     return far;
   };
   if (matching_window_ == nullptr) {
-    return match(*window_, field_);
+    return match(*window_, NearField());
   }
   if (policy == WindowPolicy::kMatchingWindow) {
     return match_far();
   }
-  MatchResult near = match(*window_, field_);
+  MatchResult near = match(*window_, NearField());
   const int near_degenerate = near.degeneracy.degenerate_directions;
   if (near.ok && near_degenerate == 0) {
     return near;
@@ -251,7 +259,7 @@ FrontEnd::WideRefinements FrontEnd::WideSearch(const ScanPoints& points, const P
   // The lattice is scored on the field of the first window the refinements use (the matching
   // window's is up to date once a match has used it).
   const bool far = policy == WindowPolicy::kMatchingWindow && matching_window_ != nullptr;
-  const MatchingField& field = far ? matching_field_ : field_;
+  const MatchingField& field = far ? matching_field_ : NearField();
   WideRefinements result;
   result.separation_xy = 2.0 * wide.linear_step * field.Limits().Resolution();
   result.separation_theta = 2.0 * wide.angular_step;
@@ -365,10 +373,6 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
       step.status = FrameStatus::kFallbackEmptyMap;
       ++stats_.fallback_empty_map;
     } else {
-      start = Clock::now();
-      field_.Update(*window_);
-      window_->ClearChanges();  // the matching window's field follows it only when needed
-      stats_.seconds_field += SecondsSince(start);
       start = Clock::now();
       bool velocity_preferred = false;
       bool rescued = false;
@@ -485,8 +489,8 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
   step.key_map = keymaps_.MaybeSnapshot(*window_);
   stats_.key_maps += step.key_map ? 1 : 0;
   stats_.seconds_keymap += SecondsSince(start);
-  stats_.field_rebuilds = field_.NumRebuilds();
-  stats_.field_tile_updates = field_.NumTileUpdates();
+  stats_.field_rebuilds = field_.NumRebuilds() + matching_field_.NumRebuilds();
+  stats_.field_tile_updates = field_.NumTileUpdates() + matching_field_.NumTileUpdates();
 
   last_estimate_ = pose;
   return step;

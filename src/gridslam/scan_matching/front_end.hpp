@@ -82,7 +82,7 @@ struct FrontEndStats {
   long wall_normal_frames = 0;
   long insertions = 0;
   long key_maps = 0;
-  long field_rebuilds = 0;
+  long field_rebuilds = 0;  ///< Distance-field rebuilds and region updates, both windows' fields.
   long field_tile_updates = 0;
   double seconds_preprocess = 0.0;
   double seconds_field = 0.0;
@@ -129,6 +129,13 @@ class FrontEnd {
                                                  const Pose2& T_odom_base_predicted,
                                                  bool odometry_trusted) const;
   [[nodiscard]] bool ShouldInsert(const Frame& frame, const Pose2& pose) const;
+  /// field_, brought up to date with window_ first. Only matches in window_ read it (without a
+  /// separate matching window, or without odometry), so it follows the window's changes when one
+  /// does, as matching_field_ does: one update over several scans' changes gives the same
+  /// distances as one per scan (a label may name another obstacle at the same distance; the
+  /// distance-field residual reads only the distances, and without a separate matching window,
+  /// where point_to_line reads the labels, the updates come at the same frames as before).
+  [[nodiscard]] const MatchingField& NearField();
   /// Which local map a match uses.
   enum class WindowPolicy {
     /// The matching window, every return inserted: where a measured prior holds the match near
@@ -176,7 +183,7 @@ class FrontEnd {
   ScanMatcher matcher_;
   std::unique_ptr<RollingWindow> window_;           ///< Key maps are its centre.
   std::unique_ptr<RollingWindow> matching_window_;  ///< Null: only window_ is matched against.
-  MatchingField field_;                             ///< Of window_.
+  MatchingField field_;                             ///< Of window_, updated when a match uses it.
   MatchingField matching_field_;  ///< Of matching_window_, updated when a match uses it.
   keymap::KeyMapBuilder keymaps_;
   OdometryNoiseEstimate odometry_noise_;

@@ -76,15 +76,16 @@ void MatchingField::UpdateRegion(const RollingWindow& window, int i0, int j0, in
   scratch_sources_.resize(static_cast<std::size_t>(sw) * static_cast<std::size_t>(sh));
   window.Obstacles().CopyRegion(si0, sj0, si1, sj1, scratch_sources_.data());
   const auto max_cells = static_cast<float>(max_distance_ / limits_.Resolution());
-  distance_transform::SquaredEuclideanDistanceTransform(scratch_sources_.data(), sw, sh,
-                                                        scratch_field_, true, max_cells);
+  // Only the region's rows of the transform: the rows above and below only hold sources.
+  distance_transform::SquaredEuclideanDistanceTransformRows(
+      scratch_sources_.data(), sw, sh, j0 - sj0, j1 - sj0, scratch_field_, true, max_cells);
   const auto res = static_cast<float>(limits_.Resolution());
   const auto max_d = static_cast<float>(max_distance_);
   for (int j = j0; j < j1; ++j) {
     const std::size_t row = static_cast<std::size_t>(layout_.Row(j)) * static_cast<std::size_t>(w);
     int column = layout_.Column(i0);
     for (int i = i0; i < i1; ++i) {
-      const std::size_t local = static_cast<std::size_t>(j - sj0) * static_cast<std::size_t>(sw) +
+      const std::size_t local = static_cast<std::size_t>(j - j0) * static_cast<std::size_t>(sw) +
                                 static_cast<std::size_t>(i - si0);
       const std::size_t global = row + static_cast<std::size_t>(column);
       column = column + 1 == w ? 0 : column + 1;

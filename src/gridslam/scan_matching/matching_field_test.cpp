@@ -68,6 +68,32 @@ TEST(MatchingField, IncrementalUpdatesEqualARebuild) {
   EXPECT_EQ(field.NumRebuilds(), 1);  // only the first update rebuilds
 }
 
+// The front end's key-map field follows its window only when a match uses it: one update over
+// the changes and shifts of several scans must hold the same distances as a rebuild too.
+TEST(MatchingField, UpdatesAfterSeveralScansEqualARebuild) {
+  LocalMapOptions options;
+  options.size = 8.0;
+  std::mt19937 rng(23);
+  RollingWindow window(options, Eigen::Vector2d::Zero());
+  const double max_distance = 0.3;
+  MatchingField field(max_distance);
+  std::uniform_real_distribution<double> step(-0.25, 0.45);
+  Pose2 pose;
+  int updates = 0;
+  for (const int scans : {1, 3, 7, 12, 2, 5, 9, 4}) {
+    for (int k = 0; k < scans; ++k) {
+      pose = pose * Pose2(step(rng), 0.3 * step(rng), 0.5 * step(rng));
+      window.Recentre(pose.translation());
+      window.InsertScan(pose, RandomScan(rng));
+    }
+    field.Update(window);
+    window.ClearChanges();
+    ++updates;
+    ExpectSameDistances(field, window, max_distance);
+  }
+  EXPECT_LT(field.NumRebuilds(), updates);  // the incremental path ran
+}
+
 TEST(MatchingField, InterpolatesBetweenCellCentresAndClampsOutside) {
   LocalMapOptions options;
   options.size = 4.0;

@@ -96,6 +96,10 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
                               prior_ldlt.vectorD().minCoeff() > 0.0;
   const bool wall_normals = !point_to_line_ && scan.wall_normals.size() == scan.points.size() &&
                             !scan.wall_normals.empty();
+  // Outside the grid the field interpolates MaxDistance(): when that is no nearer than a
+  // correspondence may be, the distance alone rejects such points and the cell test is redundant.
+  const bool test_cells =
+      point_to_line_ || field.MaxDistance() < options_.max_correspondence_distance;
   Eigen::Vector3d x = start.ToVector();
   MatchResult result;
   LinearSystem system;
@@ -114,12 +118,15 @@ MatchResult ScanMatcher::Refine(const RollingWindow& map, const MatchingField& f
         const double dy = s * q.x() + c * q.y();
         const double wx = dx + x.x();
         const double wy = dy + x.y();
-        const auto ci = static_cast<int>(std::floor((wx - ox) / res));
-        const auto cj = static_cast<int>(std::floor((wy - oy) / res));
-        if (ci < 0 || cj < 0 || ci >= w || cj >= h) {
-          continue;
+        std::size_t index = 0;
+        if (test_cells) {
+          const auto ci = static_cast<int>(std::floor((wx - ox) / res));
+          const auto cj = static_cast<int>(std::floor((wy - oy) / res));
+          if (ci < 0 || cj < 0 || ci >= w || cj >= h) {
+            continue;
+          }
+          index = layout.Index(ci, cj);
         }
-        const std::size_t index = layout.Index(ci, cj);
         if (point_to_line_) {
           const std::int32_t nearest = field.Nearest(index);
           if (nearest < 0) {
