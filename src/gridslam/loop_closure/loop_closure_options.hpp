@@ -69,6 +69,13 @@ struct LoopClosureOptions {
   double appearance_gate_max_uncertainty = 10.0;
   /// Rounds of the catch-up search after two robots' graphs are joined [-].
   int catch_up_rounds = 2;
+  /// A lone verified match between two components (no independent second one) is verified by
+  /// aligning the newer robot's key maps within this path distance of it under the relative
+  /// frame it implies (pipeline/join_verifier.hpp); 0 = never [m]. Off by default: it joins the
+  /// robots of a building they cross only once (fr-clinic in 3 robots), but in a symmetric one
+  /// (the simulated office) a rotated look-alike verifies as well as the truth
+  /// (docs/multi_robot.md, "A join from one meeting place").
+  double join_verification_travel = 0.0;
   /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
   double prune_chi2 = 25.0;
   /// When feature alignment of a prior-based candidate fails and the uncertainty distance is
@@ -125,6 +132,9 @@ struct LoopClosureOptions {
     v("appearance_gate_max_uncertainty", appearance_gate_max_uncertainty,
       "Cap of the uncertainty distance in the gate of appearance matches [m]");
     v("catch_up_rounds", catch_up_rounds, "Rounds of the catch-up search after a join [-]");
+    v("join_verification_travel", join_verification_travel,
+      "A lone match between two robots is verified by aligning the newer robot's key maps "
+      "within this path distance of it under the frame it implies; 0 = never [m]");
     v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
     v("prior_refinement", prior_refinement,
       "Fall back to refining the predicted transform when feature alignment fails");

@@ -2,74 +2,19 @@
 // mapping in its own frame; the joiner moves one into the other's frame and catches up.
 #include "gridslam/pipeline/component_joiner.hpp"
 
-#include <map>
-#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "gridslam/pipeline/two_robot_corridor_testing.hpp"
 
 namespace gridslam::pipeline {
 namespace {
 
 using loop_closure::Match;
 
-/// Answers with the true relative pose of key maps within `range` of each other (in truth),
-/// or a scripted wrong answer.
-class ScriptedAligner : public Aligner {
- public:
-  ScriptedAligner(std::vector<Pose2> truth, double range)
-      : truth_(std::move(truth)), range_(range) {}
-  std::optional<Alignment> Align(int i, int k, const Pose2*, double) override {
-    ++calls;
-    if (const auto it = wrong.find({i, k}); it != wrong.end()) {
-      return Alignment{it->second, false};
-    }
-    const Pose2& a = truth_[static_cast<std::size_t>(i)];
-    const Pose2& b = truth_[static_cast<std::size_t>(k)];
-    if ((a.translation() - b.translation()).norm() > range_) {
-      return std::nullopt;
-    }
-    return Alignment{Between(a, b), false};
-  }
-  std::map<std::pair<int, int>, Pose2> wrong;
-  int calls = 0;
-
- private:
-  std::vector<Pose2> truth_;
-  double range_;
-};
-
-struct Team {
-  KeyMapGraph graph{2, {}};
-  std::vector<Pose2> truth;
-  /// Robot 0 along y = 0, robot 1 along y = 1 (key maps every 2 m), robot 1's odometry frame
-  /// rotated and moved by `T_1_world`.
-  explicit Team(const Pose2& T_1_world) {
-    for (int r = 0; r < 2; ++r) {
-      for (int v = 0; v < 15; ++v) {
-        truth.emplace_back(2.0 * v, r, 0.0);
-        KeyMapNode node;
-        node.robot = r;
-        node.travel = 2.0 * v;
-        node.T_odom_key = r == 0 ? truth.back() : T_1_world * truth.back();
-        node.alignable = true;
-        const int previous = graph.LastKeyMap(r);
-        const int id = graph.AddKeyMap(std::move(node));
-        if (previous >= 0) {
-          EdgeRecord edge;
-          edge.from = previous;
-          edge.to = id;
-          edge.T_from_to = Between(graph.node(previous).T_odom_key, graph.node(id).T_odom_key);
-          edge.information = Information(0.02, 0.005);
-          graph.AddEdge(edge, 2.0);
-        }
-      }
-    }
-  }
-  [[nodiscard]] Match Closure(int i, int k) const {
-    return {i, k, Between(truth[static_cast<std::size_t>(i)], truth[static_cast<std::size_t>(k)])};
-  }
-};
+using testing::ScriptedAligner;
+using testing::Team;
 
 TEST(ComponentJoiner, JoinsIntoTheOlderFrameAndCatchesUp) {
   Team team(Pose2(50.0, -20.0, 1.0));

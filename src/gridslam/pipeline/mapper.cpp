@@ -27,6 +27,7 @@ Mapper::Impl::Impl(const MapperOptions& mapper_options, int num_robots)
       arbiter(mapper_options.loop_closure),
       joiner(mapper_options.loop_closure, mapper_options.graph.loop_uncertainty,
              mapper_options.optimizer),
+      join_verifier(mapper_options.loop_closure),
       snapshots(mapper_options.fusion),
       appearance_rng(loop_closure::AppearanceIndex::NewRandomState()) {
   GRIDSLAM_CHECK(num_robots >= 1) << num_robots;

@@ -128,9 +128,16 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
       }
       graph.RecordClosure(match, ClosureOutcome::kPending, /*appearance=*/true);
       const Decision decision = arbiter.OfferJoin(match, graph);
-      if (decision.verdict == Verdict::kAcceptGroup) {
-        const ComponentJoiner::Result joined =
-            joiner.Join(decision.accepted, now, graph, arbiter, aligner);
+      std::vector<Match> group = decision.accepted;
+      if (decision.verdict != Verdict::kAcceptGroup) {
+        // A lone match: verified by aligning the key maps around it under the frame it implies.
+        const JoinVerifier::Result verified =
+            join_verifier.Verify(match, arbiter.joinable(), graph, aligner);
+        stats.candidates += verified.alignments;
+        group = verified.matches;
+      }
+      if (!group.empty()) {
+        const ComponentJoiner::Result joined = joiner.Join(group, now, graph, arbiter, aligner);
         joins.push_back(joined.join);
         stats.candidates += joined.alignments;
         return true;

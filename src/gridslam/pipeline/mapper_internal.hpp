@@ -25,6 +25,7 @@
 #include "gridslam/loop_closure/closure_arbiter.hpp"
 #include "gridslam/pipeline/candidate_selector.hpp"
 #include "gridslam/pipeline/component_joiner.hpp"
+#include "gridslam/pipeline/join_verifier.hpp"
 #include "gridslam/pipeline/key_map_aligner.hpp"
 #include "gridslam/pipeline/key_map_graph.hpp"
 #include "gridslam/pipeline/mapper.hpp"
@@ -76,8 +77,8 @@ struct KeyMapJob {
   int robot = 0;
   int id = 0;  ///< Its vertex id: key maps are integrated in the order they are made.
   keymap::KeyMap key_map;
-  Time time;        ///< The key map's time (KeyMapNode::time).
-  Time event_time;  ///< The latest frame's time when it was made (events, joins).
+  Time time;            ///< The key map's time (KeyMapNode::time).
+  Time event_time;      ///< The latest frame's time when it was made (events, joins).
   double travel = 0.0;  ///< The robot's path length when it was made.
   std::optional<DescribedKeyMap> described;  ///< Set by whichever thread describes it.
 };
@@ -137,6 +138,7 @@ struct Mapper::Impl {
   CandidateSelector selector;
   loop_closure::ClosureArbiter arbiter;
   ComponentJoiner joiner;
+  JoinVerifier join_verifier;
   SnapshotFusion snapshots;
   std::vector<JoinRecord> joins;
   MapperStats stats;  ///< Back: everything but the front's counters.
@@ -149,7 +151,7 @@ struct Mapper::Impl {
   MapperStats front_stats;  ///< frames, odometry counters, seconds_front_end.
   Time front_now;           ///< Time of the latest frame.
   int key_maps_made = 0;
-  MapperStats reported;  ///< What Stats() returns.
+  MapperStats reported;                  ///< What Stats() returns.
   std::unique_ptr<KeyMapWorker> worker;  ///< Null with one thread.
 };
 

@@ -1,0 +1,107 @@
+#include "gridslam/pipeline/join_verifier.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "gridslam/common/logging.hpp"
+
+namespace gridslam::pipeline {
+
+using loop_closure::Match;
+
+namespace {
+
+// Key maps of the component `component`, alignable, whose estimates lie within `radius` of
+// `centre`, nearest first, at most `count`.
+std::vector<int> Nearest(const KeyMapGraph& graph, int component, const Eigen::Vector2d& centre,
+                         double radius, std::size_t count) {
+  std::vector<std::pair<double, int>> near;
+  for (const KeyMapNode& node : graph.nodes()) {
+    const double d = (graph.Estimate(node.id).translation() - centre).norm();
+    if (node.alignable && graph.Component(node.id) == component && d < radius) {
+      near.emplace_back(d, node.id);
+    }
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<int> ids;
+  for (std::size_t n = 0; n < std::min(count, near.size()); ++n) {
+    ids.push_back(near[n].second);
+  }
+  return ids;
+}
+
+}  // namespace
+
+JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
+                                          const std::vector<Match>& pending,
+                                          const KeyMapGraph& graph, Aligner& aligner) const {
+  Result result;
+  if (options_.join_verification_travel <= 0.0) {
+    return result;
+  }
+  const int older = graph.Component(hypothesis.i);
+  const int newer = graph.Component(hypothesis.k);
+  for (const Match& p : pending) {
+    const bool same = graph.Component(p.i) == older && graph.Component(p.k) == newer;
+    const bool reversed = graph.Component(p.i) == newer && graph.Component(p.k) == older;
+    if ((same || reversed) &&
+        !loop_closure::PairConsistent(hypothesis, same ? p : loop_closure::Reversed(p), graph,
+                                      options_)) {
+      GRIDSLAM_LOG_DEBUG("join hypothesis {}-{}: refused, match {}-{} disagrees", hypothesis.i,
+                         hypothesis.k, p.i, p.k);
+      return result;
+    }
+  }
+  const int robot = graph.Robot(hypothesis.k);
+  // The newer component's frame in the older one's, as the hypothesis says.
+  const Pose2 T_a_b =
+      graph.Estimate(hypothesis.i) * hypothesis.T_i_k * graph.Estimate(hypothesis.k).Inverse();
+  std::vector<Match> support;
+  std::vector<int> covered = {hypothesis.k};
+  bool independent = false;
+  for (const KeyMapNode& b : graph.nodes()) {
+    const double along = std::abs(b.travel - graph.Travel(hypothesis.k));
+    if (b.robot != robot || b.id == hypothesis.k || !b.alignable ||
+        along > options_.join_verification_travel) {
+      continue;
+    }
+    const Pose2 predicted = T_a_b * graph.Estimate(b.id);  // b in the older component's frame
+    for (const int a : Nearest(graph, older, predicted.translation(), options_.search_radius,
+                               /*count=*/2)) {
+      const Pose2 prior = Between(graph.Estimate(a), predicted);
+      // The prediction is as uncertain as the two paths from the matched key maps (another
+      // robot of the older component: as far as the search reaches).
+      const double uncertainty =
+          along + (graph.Robot(a) == graph.Robot(hypothesis.i)
+                       ? std::abs(graph.Travel(a) - graph.Travel(hypothesis.i))
+                       : options_.max_search_radius);
+      ++result.alignments;
+      const std::optional<Alignment> measured = aligner.Align(a, b.id, &prior, uncertainty);
+      if (!measured.has_value() || measured->free_axis.has_value()) {
+        continue;
+      }
+      const Match found{a, b.id, measured->T_i_k};
+      if (!loop_closure::PairConsistent(hypothesis, found, graph, options_)) {
+        continue;
+      }
+      support.push_back(found);
+      if (std::find(covered.begin(), covered.end(), b.id) == covered.end()) {
+        covered.push_back(b.id);
+      }
+      independent = independent || loop_closure::Independent(hypothesis, found, graph,
+                                                             options_.independent_travel);
+    }
+  }
+  GRIDSLAM_LOG_DEBUG("join hypothesis {}-{}: {} alignments, {} agree ({} key maps{})", hypothesis.i,
+                     hypothesis.k, result.alignments, support.size(), covered.size(),
+                     independent ? ", one independent" : "");
+  if (static_cast<int>(covered.size()) < options_.min_consistent_gated || !independent) {
+    return result;
+  }
+  result.matches.push_back(hypothesis);
+  result.matches.insert(result.matches.end(), support.begin(), support.end());
+  return result;
+}
+
+}  // namespace gridslam::pipeline

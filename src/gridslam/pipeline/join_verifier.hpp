@@ -1,0 +1,47 @@
+// Verifying a lone join hypothesis (docs/multi_robot.md, "A join from one meeting place"). Two
+// robots that meet only briefly in a feature-poor building (a corridor crossed once) give the
+// appearance search one run of neighbouring matches: never two independent ones, so
+// ClosureArbiter::OfferJoin waits for ever and the robots never join. One verified appearance
+// match is a hypothesis of the components' relative frame. Under it, the key maps of the newer
+// robot within `join_verification_travel` along its path are aligned with the nearest key maps
+// of the older component by the prediction (FeatureAligner::Align with a prior: features, then
+// the prior search and refinement). The hypothesis stands when alignments that agree with it
+// (PairConsistent) cover `min_consistent_gated` distinct key maps of the newer robot, the match's
+// own included, and at least one of them is independent of the match (`independent_travel`
+// along both paths): the rule a closure found by the prior search within one map must meet.
+// Ridges (a position along a corridor left unmeasured) are not evidence for a join.
+// Contract: reads the graph, asks the aligner; writes nothing.
+#pragma once
+
+#include <vector>
+
+#include "gridslam/loop_closure/closure_arbiter.hpp"
+#include "gridslam/loop_closure/loop_closure_options.hpp"
+#include "gridslam/pipeline/key_map_aligner.hpp"
+#include "gridslam/pipeline/key_map_graph.hpp"
+
+namespace gridslam::pipeline {
+
+class JoinVerifier {
+ public:
+  explicit JoinVerifier(const loop_closure::LoopClosureOptions& options) : options_(options) {}
+
+  struct Result {
+    /// The hypothesis first, then the alignments that confirm it (i in its component, k in the
+    /// other); empty when it is not confirmed.
+    std::vector<loop_closure::Match> matches;
+    long alignments = 0;  ///< Alignments tried.
+  };
+  /// `hypothesis`: a verified match between two components (i: a key map of the component it
+  /// would join, k: one of the newer robot's). `pending`: the matches waiting to join components
+  /// (ClosureArbiter::joinable); one between the same two components that disagrees with the
+  /// hypothesis refuses it (conflicting evidence: a symmetric building matched both ways).
+  [[nodiscard]] Result Verify(const loop_closure::Match& hypothesis,
+                              const std::vector<loop_closure::Match>& pending,
+                              const KeyMapGraph& graph, Aligner& aligner) const;
+
+ private:
+  loop_closure::LoopClosureOptions options_;
+};
+
+}  // namespace gridslam::pipeline
