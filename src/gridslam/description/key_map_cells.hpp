@@ -78,4 +78,9 @@ void SquaredObstacleDistances(const KeyMapCells& cells,
 /// computed here (the same numbers).
 KeyMapGeometry ComputeGeometry(const KeyMapCells& cells, const cv::Mat* distance_cells = nullptr);
 
+/// The geometry of `cells` from the squared distances SquaredObstacleDistances(cells) gives (the
+/// same numbers as ComputeGeometry(cells); only the observed cells' square roots are taken).
+KeyMapGeometry ComputeGeometry(const KeyMapCells& cells,
+                               const distance_transform::SquaredDistanceField& field);
+
 }  // namespace gridslam::description

@@ -46,19 +46,31 @@ KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
 }
 
 KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
+  thread_local distance_transform::SquaredDistanceField field;
+  SquaredObstacleDistances(cells, field);
+  return Images(cells, field, {true, true, true});
+}
+
+KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells,
+                                     const distance_transform::SquaredDistanceField& field,
+                                     const ImageSelection& selection) const {
   const MapLimits& limits = cells.Limits();
   const int width = limits.Width();
   const int height = limits.Height();
   KeyMapImages images;
-  images.obstacle = ObstacleImage(cells);
-  images.grid = GridImage(cells);
+  if (selection.obstacle) {
+    images.obstacle = ObstacleImage(cells);
+  }
+  if (selection.grid) {
+    images.grid = GridImage(cells);
+  }
   // distance_transform::DistanceTransformCells(images.obstacle), from the squared distances.
-  thread_local distance_transform::SquaredDistanceField field;
-  SquaredObstacleDistances(cells, field);
-  images.distance_cells = cv::Mat(height, width, CV_32F);
-  auto* distance_cells = images.distance_cells.ptr<float>();
-  for (std::size_t k = 0; k < field.squared.size(); ++k) {
-    distance_cells[k] = std::sqrt(field.squared[k]);
+  if (selection.distance_cells || options_.minmax_normalization) {
+    images.distance_cells = cv::Mat(height, width, CV_32F);
+    auto* distance_cells = images.distance_cells.ptr<float>();
+    for (std::size_t k = 0; k < field.squared.size(); ++k) {
+      distance_cells[k] = std::sqrt(field.squared[k]);
+    }
   }
   if (options_.minmax_normalization) {
     cv::Mat finite = images.distance_cells.clone();
@@ -72,7 +84,15 @@ KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
   const double clamp_cells = options_.distance_clamp / limits.Resolution();
   const double clamp_squared = std::ceil(clamp_cells * clamp_cells);
   if (clamp_squared > 65536.0) {
-    images.distance = distance_transform::DistanceToImage(images.distance_cells, clamp_cells);
+    cv::Mat distance_cells = images.distance_cells;
+    if (distance_cells.empty()) {
+      distance_cells = cv::Mat(height, width, CV_32F);
+      auto* d = distance_cells.ptr<float>();
+      for (std::size_t k = 0; k < field.squared.size(); ++k) {
+        d[k] = std::sqrt(field.squared[k]);
+      }
+    }
+    images.distance = distance_transform::DistanceToImage(distance_cells, clamp_cells);
     return images;
   }
   const auto table_size = static_cast<std::size_t>(clamp_squared) + 1;
@@ -87,7 +107,9 @@ KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
   const auto last = static_cast<float>(table_size - 1);
   for (std::size_t k = 0; k < field.squared.size(); ++k) {
     const float q = field.squared[k];
-    pixels[k] = q <= last ? table[static_cast<std::size_t>(q)] : beyond;
+    // q <= last <= 65536: a whole number the 32-bit conversion takes exactly.
+    pixels[k] =
+        q <= last ? table[static_cast<std::uint32_t>(static_cast<std::int32_t>(q))] : beyond;
   }
   return images;
 }
@@ -98,10 +120,16 @@ KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const
   description.cells = Cells(key_map);
   const MapLimits& limits = description.cells.Limits();
   const double resolution = limits.Resolution();
-  const KeyMapImages images = Images(description.cells);
+  // Only the images the options detect and describe on.
+  ImageSelection selection;
+  selection.grid = options_.detect_image == "grid" || options_.descriptor_image == "grid";
+  selection.obstacle = options_.descriptor_image == "obstacle";
+  thread_local distance_transform::SquaredDistanceField field;
+  SquaredObstacleDistances(description.cells, field);
+  const KeyMapImages images = Images(description.cells, field, selection);
 
   // Metric distance field with unobserved cells marked, and the obstacle cell centres.
-  KeyMapGeometry geometry = ComputeGeometry(description.cells, &images.distance_cells);
+  KeyMapGeometry geometry = ComputeGeometry(description.cells, field);
   description.distance = std::move(geometry.distance);
   description.obstacle_points = std::move(geometry.obstacle_points);
   description.seconds_distance = SecondsSince(start);

@@ -66,6 +66,18 @@ class KeyMapDescriber {
   [[nodiscard]] const DescriptionOptions& Options() const { return options_; }
 
  private:
+  /// Which images Images() makes besides the 8-bit distance image.
+  struct ImageSelection {
+    bool grid = false;
+    bool obstacle = false;
+    bool distance_cells = false;
+  };
+  /// The selected images of `cells` from its squared obstacle distances
+  /// (SquaredObstacleDistances).
+  [[nodiscard]] KeyMapImages Images(const KeyMapCells& cells,
+                                    const distance_transform::SquaredDistanceField& field,
+                                    const ImageSelection& selection) const;
+
   DescriptionOptions options_;
   cv::Ptr<cv::Feature2D> detector_;
 };

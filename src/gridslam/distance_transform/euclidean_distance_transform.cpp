@@ -75,23 +75,27 @@ constexpr std::int32_t kNoSource = -1;
 /// kept as the first integer column each parabola wins, so no division is rounded; the minimum is
 /// the same number the float envelope of SquaredDistance1D finds. False when the row has no
 /// source (then `d` is +inf and `arg` untouched).
+///
+/// Rows of at most kExactSide cells: every number below (q² + f[q] <= 2 · 4095², the products
+/// first · den <= 4096 · 8190) fits in 32 bits, and every squared distance is an integer below
+/// 2^24, exact in a float.
 bool SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* arg, std::int32_t* v,
                         std::int32_t* first) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
-    const std::int64_t fq = f[q];
+    const std::int32_t fq = f[q];
     if (fq == kNoSource) {
       continue;
     }
-    const std::int64_t cq = static_cast<std::int64_t>(q) * q + fq;
-    std::int64_t start = 0;
+    const std::int32_t cq = q * q + fq;
+    std::int32_t start = 0;
     while (k >= 0) {
-      const std::int64_t p = v[k];
+      const std::int32_t p = v[k];
       // q is strictly nearer than p from the column after floor(num / den) on, where their
       // parabolas meet (at that column p, the earlier one, keeps it, as in SquaredDistance1D);
       // p wins no column any more when that is before its first one.
-      const std::int64_t num = cq - (p * p + f[p]);
-      const std::int64_t den = 2 * (q - p);
+      const std::int32_t num = cq - (p * p + f[p]);
+      const std::int32_t den = 2 * (q - p);
       if (num < first[k] * den) {
         --k;
         continue;
@@ -105,7 +109,7 @@ bool SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
     }
     ++k;
     v[k] = q;
-    first[k] = static_cast<std::int32_t>(start);
+    first[k] = start;
   }
   if (k < 0) {
     std::fill(d, d + n, kInfinity);
@@ -113,14 +117,16 @@ bool SquaredDistanceRow(const std::int32_t* f, int n, float* d, std::int32_t* ar
   }
   for (int e = 0; e <= k; ++e) {
     const int end = e < k ? first[e + 1] : n;
-    const std::int64_t p = v[e];
-    const std::int64_t fp = f[p];
+    const std::int32_t p = v[e];
+    // In floats (a loop that vectorises): dx² and f[p] are integers below 2^24, so the products
+    // are exact and the sum is the integer sum rounded once, as its conversion would be.
+    const auto fp = static_cast<float>(f[p]);
     for (int x = first[e]; x < end; ++x) {
-      const std::int64_t dx = x - p;
-      d[x] = static_cast<float>(dx * dx + fp);
+      const auto dx = static_cast<float>(x - p);
+      d[x] = dx * dx + fp;
     }
     if (arg != nullptr) {
-      std::fill(arg + first[e], arg + end, static_cast<std::int32_t>(p));
+      std::fill(arg + first[e], arg + end, p);
     }
   }
   return true;

@@ -187,7 +187,10 @@ std::vector<cv::KeyPoint> DetectFastHessian(const IntegralImage& integral,
       for (int m = above.m0() + 1; m <= above.m1() - 1; ++m) {
         const float* row = layer.Row(m);
         for (int k = above.k0() + 1; k <= above.k1() - 1; ++k) {
-          if (!(row[k] > threshold) || !IsLocalMaximum(layers, i, m, k)) {
+          // The row neighbours first: most samples fail there, and IsLocalMaximum requires
+          // both (the earlier one strictly), so the outcome is the same.
+          if (!(row[k] > threshold) || !(row[k] > row[k - 1]) || !(row[k] >= row[k + 1]) ||
+              !IsLocalMaximum(layers, i, m, k)) {
             continue;
           }
           const auto refined = Refine(layers, {i, m, k}, options.interpolation_steps);
