@@ -9,21 +9,6 @@
 namespace gridslam::loop_closure {
 namespace {
 
-/// `stored` oriented from group `from` to group `to` (group = robot or component, given by
-/// `group` of a vertex id), or nullopt if it links other groups.
-template <class Group>
-std::optional<Match> Oriented(const Match& stored, int from, int to, Group group) {
-  const int gi = group(stored.i);
-  const int gk = group(stored.k);
-  if (gi == from && gk == to) {
-    return stored;
-  }
-  if (gi == to && gk == from) {
-    return Reversed(stored);
-  }
-  return std::nullopt;
-}
-
 // `v` without its component along the unit `axis`.
 Eigen::Vector2d WithoutAxis(const Eigen::Vector2d& v, const Eigen::Vector2d& axis) {
   return v - v.dot(axis) * axis;

@@ -51,6 +51,20 @@ struct Match {
 
 /// The match seen from the other side: i's pose in k's frame (the free axis rotated with it).
 [[nodiscard]] Match Reversed(const Match& match);
+/// `stored` oriented from group `from` to group `to` (group = robot or component, given by
+/// `group` of a vertex id), or nullopt if it links other groups.
+template <class Group>
+[[nodiscard]] std::optional<Match> Oriented(const Match& stored, int from, int to, Group group) {
+  const int gi = group(stored.i);
+  const int gk = group(stored.k);
+  if (gi == from && gk == to) {
+    return stored;
+  }
+  if (gi == to && gk == from) {
+    return Reversed(stored);
+  }
+  return std::nullopt;
+}
 
 /// What the arbiter reads of the graph (implemented by pipeline::KeyMapGraph, or a test).
 class GraphView {

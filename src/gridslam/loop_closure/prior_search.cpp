@@ -304,6 +304,17 @@ Exclusion RidgeStrip(int u, int v, int ru, int rv, double radius) {
   return Exclusion{Exclusion::Shape::kStrip, u, v, radius, -(rv - v) / length, (ru - u) / length};
 }
 
+// The ridge verdict of an ambiguous search: `off_ridge`, the best score outside the rival's
+// `strip`, within max_ambiguity of the best means every look-alike lies on the strip's line.
+void JudgeRidge(const Exclusion& strip, double off_ridge, const PriorSearchOptions& options,
+                PriorSearchResult& result) {
+  result.off_ridge = off_ridge;
+  result.ridge = off_ridge <= options.max_ambiguity * result.score;
+  if (result.ridge) {
+    result.ridge_axis = Eigen::Vector2d(strip.nv, -strip.nu);
+  }
+}
+
 // The pose of lattice rotation a and translation (u, v): p_a = T * p_b.
 Pose2 LatticePose(const SearchLattice& lattice, double resolution, const Pose2& prior, int a, int u,
                   int v, const PriorSearchOptions& options) {
@@ -400,11 +411,7 @@ PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<f
     const Exclusion strip = RidgeStrip(best_u, best_v, rival_u, rival_v, distinct_cells);
     int off_u = 0;
     int off_v = 0;
-    result.off_ridge = best_outside(strip, &off_u, &off_v) / n;
-    result.ridge = result.off_ridge <= options.max_ambiguity * result.score;
-    if (result.ridge) {
-      result.ridge_axis = Eigen::Vector2d(strip.nv, -strip.nu);
-    }
+    JudgeRidge(strip, best_outside(strip, &off_u, &off_v) / n, options, result);
   }
   result.ok = result.score >= options.min_score && (distinct || result.ridge);
   return result;
@@ -464,11 +471,7 @@ PriorSearchResult SearchAroundPrior(std::span<const Eigen::Vector2d> points_b,
     // across it are measured.
     const Exclusion strip = RidgeStrip(best.u, best.v, rival.u, rival.v, distinct_cells);
     const BranchAndBound::Best off = search.Search(ambiguous, strip, &result.scored);
-    result.off_ridge = off.found ? static_cast<double>(off.score) / n : 0.0;
-    result.ridge = result.off_ridge <= options.max_ambiguity * result.score;
-    if (result.ridge) {
-      result.ridge_axis = Eigen::Vector2d(strip.nv, -strip.nu);
-    }
+    JudgeRidge(strip, off.found ? static_cast<double>(off.score) / n : 0.0, options, result);
   }
   result.ok = result.score >= options.min_score && (distinct || result.ridge);
   return result;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "gridslam/common/logging.hpp"
@@ -42,12 +43,11 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
   }
   const int older = graph.Component(hypothesis.i);
   const int newer = graph.Component(hypothesis.k);
+  const auto component_of = [&](int id) { return graph.Component(id); };
   for (const Match& p : pending) {
-    const bool same = graph.Component(p.i) == older && graph.Component(p.k) == newer;
-    const bool reversed = graph.Component(p.i) == newer && graph.Component(p.k) == older;
-    if ((same || reversed) &&
-        !loop_closure::PairConsistent(hypothesis, same ? p : loop_closure::Reversed(p), graph,
-                                      options_)) {
+    const std::optional<Match> oriented = loop_closure::Oriented(p, older, newer, component_of);
+    if (oriented.has_value() &&
+        !loop_closure::PairConsistent(hypothesis, *oriented, graph, options_)) {
       GRIDSLAM_LOG_DEBUG("join hypothesis {}-{}: refused, match {}-{} disagrees", hypothesis.i,
                          hypothesis.k, p.i, p.k);
       return result;

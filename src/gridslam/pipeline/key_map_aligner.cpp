@@ -153,11 +153,11 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   // ridge must be constrained.
   const Eigen::Matrix2d hessian_xy = refined.hessian.topLeftCorner<2, 2>();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(hessian_xy);
-  const double weakest =
-      free_axis.has_value()
-          ? Eigen::Vector2d(-free_axis->y(), free_axis->x())
-                .dot(hessian_xy * Eigen::Vector2d(-free_axis->y(), free_axis->x()))
-          : eig.eigenvalues()(0);
+  double weakest = eig.eigenvalues()(0);
+  if (free_axis.has_value()) {
+    const Eigen::Vector2d across(-free_axis->y(), free_axis->x());
+    weakest = across.dot(hessian_xy * across);
+  }
   if (weakest < options_.prior_min_constraint * eig.eigenvalues()(1)) {
     GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained{}", i, k,
                        free_axis.has_value() ? " across the ridge" : "");
