@@ -19,6 +19,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"found_by_prior_refinement", s.prior_refined},
         {"prior_searches", s.prior_searches},
         {"prior_ridges", s.prior_ridges},
+        {"verified_loops", s.verified_loops},
         {"key_map_fields_recomputed", s.geometry_recomputed},
         {"online_full_optimizations", s.online_full_optimizations},
         {"accepted", s.accepted},

@@ -33,16 +33,17 @@ struct LocalMapOptions {
   /// Returns with no near neighbour that lie on the line through their neighbouring beams'
   /// returns get its normal (walls at grazing incidence, ExtractScanPoints).
   bool grazing_normals = true;
-  /// The largest standard error of a wall normal's direction [rad] (0 = never, the default): on a
-  /// noisy laser the degeneracy test judges what the walls constrain on normals fitted to as many
-  /// beams (up to 8 either side) as the scan's own measured noise needs for this. With noisy ranges
-  /// and dense beams a five-beam normal is too short a stretch of wall to be pinned, and its error
+  /// The largest standard error of a wall normal's direction [rad] (0 = never): on a noisy laser
+  /// the degeneracy test judges what the walls constrain on normals fitted to as many beams (up
+  /// to 8 either side) as the scan's own measured noise needs for this. With noisy ranges and
+  /// dense beams a five-beam normal is too short a stretch of wall to be pinned, and its error
   /// passes the distance gradient along a corridor's walls into the information, enough to hide
-  /// the corridor's degeneracy. 0.1 rad = sqrt(degenerate_fraction / 2) fixes that on the noise
-  /// variants, but even gated on measured noise (normal_noise_ratio) it loses on decimated,
-  /// jittered, sparse and cropped scans of a noisy real laser, so it is off (docs/front_end.md,
-  /// "Noisy lasers, gated").
-  double normal_angle_sigma = 0.0;
+  /// the corridor's degeneracy. 0.1 rad = sqrt(degenerate_fraction / 2). On by default since
+  /// round 13, when the noise that gates it (ScanPoints::surface_noise) came to be measured on
+  /// compact windows only: measured on windows stretched across far walls it read a quiet laser
+  /// as noisy and grew its normals where they smooth real structure (docs/front_end.md, "Round
+  /// 13"; the whole matrix in docs/robustness.md).
+  double normal_angle_sigma = 0.1;
   /// A laser is noisy, and gets the wall normals, when the median measured noise of its recent
   /// scans (ScanPoints::surface_noise) exceeds this multiple of the grid's quantization noise,
   /// resolution / sqrt(12) (0.0144 m at 0.05 m cells) [-]. A quieter laser's five-beam normals

@@ -27,8 +27,8 @@ struct ScanPoints {
   std::vector<float> wall_normal_quality;
   std::vector<Eigen::Vector2d> no_return_directions;  ///< Unit directions of beams >= range_max.
   /// The scatter of the returns about their surfaces as the normals' line fits measure it: the
-  /// median residual of the five-beam windows, unbiased for Gaussian noise [m] (0 when no
-  /// window had five hits).
+  /// median residual of the compact five-beam windows (five hits within neighbour_distance of
+  /// the middle one), unbiased for Gaussian noise [m] (0 when no window was compact).
   double surface_noise = 0.0;
 
   [[nodiscard]] std::size_t size() const { return points.size(); }

@@ -159,5 +159,27 @@ TEST(ExtractScanPoints, WallNormalsFitMoreBeamsWhereTheMeasuredNoiseDemands) {
   EXPECT_EQ(clean.wall_normal_quality, clean.normal_quality);
 }
 
+// A quiet laser (5 mm) at 1 degree: two thirds of its beams see a far, uneven wall (a 0.3 m
+// step every beam at 20 m, where five beams span 1.4 m and the normal window stretches to six
+// beam spacings), the rest a near wall. The far windows' residual is the wall's shape, not
+// noise: the noise is measured on the compact windows only.
+TEST(ExtractScanPoints, SurfaceNoiseIgnoresStretchedWindows) {
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 2;
+  scan.angle_increment = std::numbers::pi / 180.0;
+  scan.range_min = 0.05;
+  scan.range_max = 80.0;
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  for (int k = 0; k <= 180; ++k) {
+    const double range = k < 120 ? 20.0 + 0.3 * (k % 2) : 1.0;
+    scan.ranges.push_back(static_cast<float>(range + noise(random)));
+  }
+  const ScanPoints points = ExtractScanPoints(scan, Pose2(), 30.0, NormalEstimation{});
+  ASSERT_EQ(points.size(), 181U);
+  EXPECT_GT(points.surface_noise, 0.002);
+  EXPECT_LT(points.surface_noise, 0.008);
+}
+
 }  // namespace
 }  // namespace gridslam

@@ -31,6 +31,8 @@ Status LoopClosureOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(catch_up_rounds >= 0, "loop_closure.catch_up_rounds >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(join_verification_travel >= 0.0, "loop_closure.join_verification_travel >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(
+      Require(loop_verification_travel >= 0.0, "loop_closure.loop_verification_travel >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(prune_chi2 > 0.0, "loop_closure.prune_chi2 > 0"));
   GRIDSLAM_RETURN_IF_ERROR(prior_search.Validate());
   return refinement.Validate();

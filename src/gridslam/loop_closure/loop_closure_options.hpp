@@ -76,6 +76,12 @@ struct LoopClosureOptions {
   /// (the simulated office) a rotated look-alike verifies as well as the truth
   /// (docs/multi_robot.md, "A join from one meeting place").
   double join_verification_travel = 0.0;
+  /// The same verification inside one map: an appearance match that disagrees with the estimate
+  /// (a loop whose drift outgrew the prior search) and has no independent support waits; it is
+  /// verified at once by aligning the key maps within this path distance of its newer key map,
+  /// under the correction it implies, with the key maps it predicts them beside (at least
+  /// min_travel_gap behind them along the path). Once per key map; 0 = never [m].
+  double loop_verification_travel = 20.0;
   /// After the final optimization, loop edges whose chi2 exceeds this are removed [-].
   double prune_chi2 = 25.0;
   /// When feature alignment of a prior-based candidate fails and the uncertainty distance is
@@ -135,6 +141,9 @@ struct LoopClosureOptions {
     v("join_verification_travel", join_verification_travel,
       "A lone match between two robots is verified by aligning the newer robot's key maps "
       "within this path distance of it under the frame it implies; 0 = never [m]");
+    v("loop_verification_travel", loop_verification_travel,
+      "A waiting appearance match within one map is verified by aligning the key maps within "
+      "this path distance of it under the correction it implies; 0 = never [m]");
     v("prune_chi2", prune_chi2, "Loop edges above this chi2 after optimization are removed [-]");
     v("prior_refinement", prior_refinement,
       "Fall back to refining the predicted transform when feature alignment fails");

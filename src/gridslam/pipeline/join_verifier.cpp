@@ -14,13 +14,16 @@ using loop_closure::Match;
 namespace {
 
 // Key maps of the component `component`, alignable, whose estimates lie within `radius` of
-// `centre`, nearest first, at most `count`.
+// `centre`, nearest first, at most `count`; with `behind` >= 0, only those at least `behind`
+// along the path from key map `of` (inside one map: the old pass, not the path just driven).
 std::vector<int> Nearest(const KeyMapGraph& graph, int component, const Eigen::Vector2d& centre,
-                         double radius, std::size_t count) {
+                         double radius, std::size_t count, int of, double behind) {
   std::vector<std::pair<double, int>> near;
   for (const KeyMapNode& node : graph.nodes()) {
     const double d = (graph.Estimate(node.id).translation() - centre).norm();
-    if (node.alignable && graph.Component(node.id) == component && d < radius) {
+    const bool old_pass = behind < 0.0 || graph.Robot(node.id) != graph.Robot(of) ||
+                          std::abs(graph.Travel(of) - node.travel) >= behind;
+    if (node.alignable && graph.Component(node.id) == component && d < radius && old_pass) {
       near.emplace_back(d, node.id);
     }
   }
@@ -38,19 +41,43 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
                                           const std::vector<Match>& pending,
                                           const KeyMapGraph& graph, Aligner& aligner) const {
   Result result;
-  if (options_.join_verification_travel <= 0.0) {
-    return result;
-  }
   const int older = graph.Component(hypothesis.i);
   const int newer = graph.Component(hypothesis.k);
+  const bool loop = older == newer;
+  const char* kind = loop ? "loop" : "join";
+  const double travel =
+      loop ? options_.loop_verification_travel : options_.join_verification_travel;
+  if (travel <= 0.0) {
+    return result;
+  }
   const auto component_of = [&](int id) { return graph.Component(id); };
   for (const Match& p : pending) {
     const std::optional<Match> oriented = loop_closure::Oriented(p, older, newer, component_of);
-    if (oriented.has_value() &&
+    // Inside one map the waiting matches are of every loop of the building; only those of the
+    // same revisit (their newer key map near the hypothesis's along the path) can contradict it.
+    const bool same_revisit =
+        !loop || std::abs(graph.Travel(p.k) - graph.Travel(hypothesis.k)) <= travel;
+    if (oriented.has_value() && same_revisit &&
         !loop_closure::PairConsistent(hypothesis, *oriented, graph, options_)) {
-      GRIDSLAM_LOG_DEBUG("join hypothesis {}-{}: refused, match {}-{} disagrees", hypothesis.i,
+      GRIDSLAM_LOG_DEBUG("{} hypothesis {}-{}: refused, match {}-{} disagrees", kind, hypothesis.i,
                          hypothesis.k, p.i, p.k);
       return result;
+    }
+  }
+  // Inside one map the revisit may already have closures: the estimate there is then measured,
+  // and a hypothesis that moves the map against one of them is a look-alike (a symmetric
+  // building's twin corridor), not a loop the prior search missed.
+  if (loop) {
+    for (const ClosureRecord& record : graph.closures()) {
+      const Match accepted{record.from, record.to, record.T_from_to};
+      if (record.outcome == loop_closure::ClosureOutcome::kAccepted &&
+          graph.Robot(record.to) == graph.Robot(hypothesis.k) &&
+          std::abs(graph.Travel(record.to) - graph.Travel(hypothesis.k)) <= travel &&
+          !loop_closure::PairConsistent(hypothesis, accepted, graph, options_)) {
+        GRIDSLAM_LOG_DEBUG("loop hypothesis {}-{}: refused, closure {}-{} disagrees", hypothesis.i,
+                           hypothesis.k, record.from, record.to);
+        return result;
+      }
     }
   }
   const int robot = graph.Robot(hypothesis.k);
@@ -62,13 +89,13 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
   bool independent = false;
   for (const KeyMapNode& b : graph.nodes()) {
     const double along = std::abs(b.travel - graph.Travel(hypothesis.k));
-    if (b.robot != robot || b.id == hypothesis.k || !b.alignable ||
-        along > options_.join_verification_travel) {
+    if (b.robot != robot || b.id == hypothesis.k || !b.alignable || along > travel) {
       continue;
     }
     const Pose2 predicted = T_a_b * graph.Estimate(b.id);  // b in the older component's frame
+    const double behind = loop ? options_.min_travel_gap : -1.0;
     for (const int a : Nearest(graph, older, predicted.translation(), options_.search_radius,
-                               /*count=*/2)) {
+                               /*count=*/2, b.id, behind)) {
       const Pose2 prior = Between(graph.Estimate(a), predicted);
       // The prediction is as uncertain as the two paths from the matched key maps (another
       // robot of the older component: as far as the search reaches).
@@ -93,8 +120,8 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
                                                              options_.independent_travel);
     }
   }
-  GRIDSLAM_LOG_DEBUG("join hypothesis {}-{}: {} alignments, {} agree ({} key maps{})", hypothesis.i,
-                     hypothesis.k, result.alignments, support.size(), covered.size(),
+  GRIDSLAM_LOG_DEBUG("{} hypothesis {}-{}: {} alignments, {} agree ({} key maps{})", kind,
+                     hypothesis.i, hypothesis.k, result.alignments, support.size(), covered.size(),
                      independent ? ", one independent" : "");
   if (static_cast<int>(covered.size()) < options_.min_consistent_gated || !independent) {
     return result;

@@ -10,6 +10,14 @@
 // own included, and at least one of them is independent of the match (`independent_travel`
 // along both paths): the rule a closure found by the prior search within one map must meet.
 // Ridges (a position along a corridor left unmeasured) are not evidence for a join.
+//
+// Inside one map the same test verifies a loop (`loop_verification_travel`, on by default): a
+// robot whose drift outgrew the prior search meets its old path in one run of neighbouring
+// appearance matches, which ClosureArbiter::OfferWithinMap queues for ever for want of an
+// independent one. The key maps within that travel of the match's newer one are aligned with the
+// old pass's key maps the correction predicts them beside (never with key maps within
+// min_travel_gap of them along the path: the path just driven); only waiting matches of the same
+// revisit can contradict. The mapper retries a hypothesis as the next key maps arrive.
 // Contract: reads the graph, asks the aligner; writes nothing.
 #pragma once
 
@@ -33,9 +41,10 @@ class JoinVerifier {
     long alignments = 0;  ///< Alignments tried.
   };
   /// `hypothesis`: a verified match between two components (i: a key map of the component it
-  /// would join, k: one of the newer robot's). `pending`: the matches waiting to join components
-  /// (ClosureArbiter::joinable); one between the same two components that disagrees with the
-  /// hypothesis refuses it (conflicting evidence: a symmetric building matched both ways).
+  /// would join, k: one of the newer robot's), or inside one (i: the old pass, k: the revisit).
+  /// `pending`: the matches waiting (ClosureArbiter::joinable, or within_map inside one map); one
+  /// that disagrees with the hypothesis refuses it (conflicting evidence: a symmetric building
+  /// matched both ways).
   [[nodiscard]] Result Verify(const loop_closure::Match& hypothesis,
                               const std::vector<loop_closure::Match>& pending,
                               const KeyMapGraph& graph, Aligner& aligner) const;

@@ -1,6 +1,7 @@
 // The join verifier on two robots driving one corridor (two_robot_corridor_testing.hpp): a lone
 // match is confirmed by the key maps around it when it is right, and refused when it is wrong,
-// when only ridges agree, or when nothing independent of it does.
+// when only ridges agree, or when nothing independent of it does. The same inside one map: a
+// loop met by one appearance match beyond the prior search's reach.
 #include "gridslam/pipeline/join_verifier.hpp"
 
 #include <gtest/gtest.h>
@@ -106,6 +107,99 @@ TEST(JoinVerifier, NeedsAnAgreeingKeyMapIndependentOfTheMatch) {
   const JoinVerifier::Result off =
       JoinVerifier(options).Verify(team.Closure(10, 25), {}, team.graph, aligner);
   EXPECT_TRUE(off.matches.empty());
+  EXPECT_EQ(aligner.calls, 0);
+}
+
+// One robot drives a corridor (y = 0, ids 0-14, key maps every 2 m), goes round a 100 m loop
+// and drives it again beside its first pass (y = 1, ids 15-29), its estimate drifted by 6 m and
+// 0.1 rad: farther than the prior search reaches, so only an appearance match meets the loop.
+struct Loop {
+  KeyMapGraph graph{1, {}};
+  std::vector<Pose2> truth;
+  Loop() {
+    const Pose2 drift(6.0, -2.0, 0.1);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int v = 0; v < 15; ++v) {
+        truth.emplace_back(2.0 * v, pass, 0.0);
+        KeyMapNode node;
+        node.robot = 0;
+        node.travel = 2.0 * v + 128.0 * pass;
+        node.T_odom_key = pass == 0 ? truth.back() : drift * truth.back();
+        node.alignable = true;
+        const int previous = graph.LastKeyMap(0);
+        const int id = graph.AddKeyMap(std::move(node));
+        if (previous >= 0) {
+          EdgeRecord edge;
+          edge.from = previous;
+          edge.to = id;
+          edge.T_from_to = Between(graph.node(previous).T_odom_key, graph.node(id).T_odom_key);
+          edge.information = Information(0.02, 0.005);
+          graph.AddEdge(edge, pass == 1 && v == 0 ? 100.0 : 2.0);
+        }
+      }
+    }
+  }
+  [[nodiscard]] Match Closure(int i, int k) const {
+    return {i, k, Between(truth[static_cast<std::size_t>(i)], truth[static_cast<std::size_t>(k)])};
+  }
+};
+
+TEST(JoinVerifier, ConfirmsALoopInsideOneMapWithTheKeyMapsAroundIt) {
+  const Loop loop;
+  const loop_closure::LoopClosureOptions options;  // loop verification on by default
+  ASSERT_GT(options.loop_verification_travel, 0.0);
+  ScriptedAligner aligner(loop.truth, 3.0);
+  const JoinVerifier verifier(options);
+  const JoinVerifier::Result result =
+      verifier.Verify(loop.Closure(10, 25), {}, loop.graph, aligner);
+  ASSERT_FALSE(result.matches.empty());
+  bool independent = false;
+  for (const Match& m : result.matches) {
+    // Second pass against first pass, never the path just driven.
+    EXPECT_LT(m.i, 15);
+    EXPECT_GE(m.k, 15);
+    EXPECT_TRUE(IsApprox(m.T_i_k, loop.Closure(m.i, m.k).T_i_k, 1e-9, 1e-9));
+    independent = independent || loop_closure::Independent(result.matches.front(), m, loop.graph,
+                                                           options.independent_travel);
+  }
+  EXPECT_TRUE(independent);
+
+  // Aliased 4 m along the corridor: the key maps around it do not agree.
+  Match aliased = loop.Closure(10, 25);
+  aliased.T_i_k = Pose2(aliased.T_i_k.x() - 4.0, aliased.T_i_k.y(), aliased.T_i_k.theta());
+  EXPECT_TRUE(verifier.Verify(aliased, {}, loop.graph, aligner).matches.empty());
+
+  // A waiting match of the same revisit that disagrees refuses it; one of another revisit (its
+  // newer key map far along the path) is no evidence either way.
+  Match same_revisit = loop.Closure(8, 23);
+  same_revisit.T_i_k = Pose2(same_revisit.T_i_k.x() + 5.0, same_revisit.T_i_k.y(), 0.5);
+  EXPECT_TRUE(
+      verifier.Verify(loop.Closure(10, 25), {same_revisit}, loop.graph, aligner).matches.empty());
+  Match other_revisit = loop.Closure(2, 3);
+  other_revisit.T_i_k = Pose2(0.0, 7.0, 1.0);
+  EXPECT_FALSE(
+      verifier.Verify(loop.Closure(10, 25), {other_revisit}, loop.graph, aligner).matches.empty());
+
+  // The revisit already has a closure, and the hypothesis moves the map against it: refused (a
+  // look-alike); a closure that agrees with it does not stand in its way.
+  Loop closed;
+  closed.graph.AddLoopEdge(closed.Closure(7, 22), ClosureOutcome::kAccepted, false,
+                           Information(0.05, 0.01), 1.0);
+  EXPECT_FALSE(verifier.Verify(closed.Closure(10, 25), {}, closed.graph, aligner).matches.empty());
+  Loop contradicted;
+  Match shifted = contradicted.Closure(7, 22);
+  shifted.T_i_k = Pose2(shifted.T_i_k.x() + 3.0, shifted.T_i_k.y(), shifted.T_i_k.theta());
+  contradicted.graph.AddLoopEdge(shifted, ClosureOutcome::kAccepted, false, Information(0.05, 0.01),
+                                 1.0);
+  EXPECT_TRUE(verifier.Verify(contradicted.Closure(10, 25), {}, contradicted.graph, aligner)
+                  .matches.empty());
+
+  // Off: nothing is tried.
+  loop_closure::LoopClosureOptions off = options;
+  off.loop_verification_travel = 0.0;
+  aligner.calls = 0;
+  EXPECT_TRUE(
+      JoinVerifier(off).Verify(loop.Closure(10, 25), {}, loop.graph, aligner).matches.empty());
   EXPECT_EQ(aligner.calls, 0);
 }
 

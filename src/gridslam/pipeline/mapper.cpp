@@ -220,6 +220,7 @@ void Mapper::Impl::IntegrateKeyMap(KeyMapJob& job) {
     if (every > 0 && graph.NumKeyMaps(robot) % every == 0) {
       changed = SearchAppearance(id, prior.tried) || changed;
     }
+    RetryLoopHypothesis(id);
     stats.seconds_alignment += SecondsSince(start);
     // Spaced along the path: a place seen by dozens of overlapping key maps would otherwise fill
     // the k nearest neighbours of a query with near-duplicates and defeat the index's vote.

@@ -54,7 +54,10 @@ struct MapperStats {
   long online_full_optimizations = 0;  ///< After closures correcting beyond the gate floor.
   long prior_searches = 0;  ///< Correlative searches around the prediction (prior_search.hpp).
   long prior_ridges = 0;    ///< Of which: aligned as ridges (position along a line unmeasured).
-  long accepted = 0;        ///< Loop edges added.
+  /// Waiting appearance matches inside one map confirmed by the key maps around them
+  /// (JoinVerifier, loop_verification_travel): loops closed beyond the prior search's reach.
+  long verified_loops = 0;
+  long accepted = 0;  ///< Loop edges added.
   long rejected_gate = 0;
   long pruned = 0;
   long joins = 0;

@@ -162,10 +162,25 @@ bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distanc
       GRIDSLAM_LOG_DEBUG("appearance match {}-{} rejected: moves the map {:.2f} m {:.3f} rad",
                          match.i, match.k, error.translation().norm(), error.theta());
       return false;
-    case Verdict::kWait:
+    case Verdict::kWait: {
       GRIDSLAM_LOG_DEBUG("appearance match {}-{} off by {:.2f} m {:.3f} rad: waits", match.i,
                          match.k, error.translation().norm(), error.theta());
+      // A loop whose drift outgrew the prior search meets itself in one run of neighbouring
+      // matches, none independent of another: a hypothesis verified by the key maps around it
+      // (once per key map: the first waiting match of k is the best-voted), and, if they do
+      // not confirm it yet, by the next key maps (RetryLoopHypothesis).
+      // A lone hypothesis must also be a drift the path could have gathered: the 10 m floor of
+      // max_correction is for matches with independent support (a look-alike room of a short
+      // loop would otherwise pass).
+      const bool plausible =
+          error.translation().norm() <= options.loop_closure.max_drift * uncertainty_distance;
+      if (plausible && loop_verified_k != match.k) {
+        loop_verified_k = match.k;
+        loop_hypothesis = match;
+        VerifyLoopHypothesis();
+      }
       return false;
+    }
     case Verdict::kAcceptGroup:
       GRIDSLAM_LOG_DEBUG(
           "{} consistent matches between robots {} and {} correct the map by "
@@ -180,6 +195,50 @@ bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distanc
       return false;
   }
   return false;
+}
+
+bool Mapper::Impl::VerifyLoopHypothesis() {
+  if (!loop_hypothesis.has_value()) {
+    return false;
+  }
+  const Match hypothesis = *loop_hypothesis;
+  const JoinVerifier::Result verified =
+      join_verifier.Verify(hypothesis, arbiter.within_map(), graph, aligner);
+  stats.candidates += verified.alignments;
+  if (verified.matches.empty()) {
+    return false;
+  }
+  loop_hypothesis.reset();
+  const Pose2 error = loop_closure::ClosureError(hypothesis, graph);
+  GRIDSLAM_LOG_DEBUG(
+      "loop hypothesis {}-{} confirmed by {} alignments: corrects the map by "
+      "{:.2f} m {:.3f} rad",
+      hypothesis.i, hypothesis.k, verified.matches.size() - 1, error.translation().norm(),
+      error.theta());
+  const loop_closure::LoopClosureOptions& lc = options.loop_closure;
+  const Eigen::Matrix3d information = Information(lc.sigma_xy, lc.sigma_theta);
+  for (const Match& m : verified.matches) {
+    graph.AddLoopEdge(m, ClosureOutcome::kAccepted, /*appearance=*/true, information,
+                      options.graph.loop_uncertainty);
+  }
+  ++stats.verified_loops;
+  OptimizeNow();  // a correction of metres, as for a group
+  return true;
+}
+
+void Mapper::Impl::RetryLoopHypothesis(int k) {
+  if (!loop_hypothesis.has_value() || k == loop_hypothesis->k ||
+      graph.Robot(k) != graph.Robot(loop_hypothesis->k)) {
+    return;
+  }
+  // The key maps after the hypothesis's are predictions it did not see: while they stay within
+  // the verification's reach, each new one may confirm it.
+  if (graph.Travel(k) - graph.Travel(loop_hypothesis->k) >
+      options.loop_closure.loop_verification_travel) {
+    loop_hypothesis.reset();
+    return;
+  }
+  VerifyLoopHypothesis();
 }
 
 }  // namespace gridslam::pipeline

@@ -123,6 +123,11 @@ struct Mapper::Impl {
   /// True when an accepted closure calls for online optimization.
   bool SearchAppearance(int k, const std::vector<int>& prior_tried);
   bool OfferWithinMap(const loop_closure::Match& match, double uncertainty_distance);
+  /// Verifies loop_hypothesis (JoinVerifier); adds its loop edges and optimizes when confirmed.
+  bool VerifyLoopHypothesis();
+  /// Once key map k (of the hypothesis's robot) is in the graph: verifies the pending
+  /// hypothesis again while k lies within loop_verification_travel after it, drops it beyond.
+  void RetryLoopHypothesis(int k);
 
   // mapper_finish.cpp
   MapperResult Finish();
@@ -139,6 +144,9 @@ struct Mapper::Impl {
   loop_closure::ClosureArbiter arbiter;
   ComponentJoiner joiner;
   JoinVerifier join_verifier;
+  int loop_verified_k = -1;  ///< The last key map whose waiting appearance match was verified.
+  /// The latest waiting appearance match inside one map that its key maps did not confirm yet.
+  std::optional<loop_closure::Match> loop_hypothesis;
   SnapshotFusion snapshots;
   std::vector<JoinRecord> joins;
   MapperStats stats;  ///< Back: everything but the front's counters.
