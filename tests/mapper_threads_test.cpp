@@ -127,6 +127,8 @@ void ExpectSameResults(const MappedRun& a, const MappedRun& b) {
   EXPECT_EQ(ra.stats.verified, rb.stats.verified);
   EXPECT_EQ(ra.stats.candidates, rb.stats.candidates);
   EXPECT_EQ(ra.stats.appearance_candidates, rb.stats.appearance_candidates);
+  EXPECT_EQ(ra.stats.verification_alignments, rb.stats.verification_alignments);
+  EXPECT_EQ(ra.stats.verified_loops, rb.stats.verified_loops);
   EXPECT_EQ(ra.stats.frames, rb.stats.frames);
   EXPECT_EQ(ra.stats.chi2_final, rb.stats.chi2_final);
   ASSERT_EQ(ra.maps.size(), rb.maps.size());

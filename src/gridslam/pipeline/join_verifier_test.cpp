@@ -126,16 +126,7 @@ struct Loop {
         node.travel = 2.0 * v + 128.0 * pass;
         node.T_odom_key = pass == 0 ? truth.back() : drift * truth.back();
         node.alignable = true;
-        const int previous = graph.LastKeyMap(0);
-        const int id = graph.AddKeyMap(std::move(node));
-        if (previous >= 0) {
-          EdgeRecord edge;
-          edge.from = previous;
-          edge.to = id;
-          edge.T_from_to = Between(graph.node(previous).T_odom_key, graph.node(id).T_odom_key);
-          edge.information = Information(0.02, 0.005);
-          graph.AddEdge(edge, pass == 1 && v == 0 ? 100.0 : 2.0);
-        }
+        testing::AppendKeyMap(&graph, std::move(node), pass == 1 && v == 0 ? 100.0 : 2.0);
       }
     }
   }

@@ -47,6 +47,9 @@ struct MapperStats {
   long featureless = 0;  ///< Key maps with too few features to align.
   long sequential_aligned = 0;
   long candidates = 0;  ///< Prior-based candidates aligned.
+  /// Key maps aligned to verify a lone match (JoinVerifier) or to extend a join
+  /// (ComponentJoiner): alignments neither search proposed.
+  long verification_alignments = 0;
   long appearance_queries = 0;
   long appearance_candidates = 0;
   long verified = 0;       ///< Alignments accepted by matching + verification.

@@ -133,13 +133,13 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
         // A lone match: verified by aligning the key maps around it under the frame it implies.
         const JoinVerifier::Result verified =
             join_verifier.Verify(match, arbiter.joinable(), graph, aligner);
-        stats.candidates += verified.alignments;
+        stats.verification_alignments += verified.alignments;
         group = verified.matches;
       }
       if (!group.empty()) {
         const ComponentJoiner::Result joined = joiner.Join(group, now, graph, arbiter, aligner);
         joins.push_back(joined.join);
-        stats.candidates += joined.alignments;
+        stats.verification_alignments += joined.alignments;
         return true;
       }
     }
@@ -204,7 +204,7 @@ bool Mapper::Impl::VerifyLoopHypothesis() {
   const Match hypothesis = *loop_hypothesis;
   const JoinVerifier::Result verified =
       join_verifier.Verify(hypothesis, arbiter.within_map(), graph, aligner);
-  stats.candidates += verified.alignments;
+  stats.verification_alignments += verified.alignments;
   if (verified.matches.empty()) {
     return false;
   }

@@ -43,6 +43,22 @@ class ScriptedAligner : public Aligner {
   double range_;
 };
 
+/// Adds `node` to `graph` with a sequential edge from its robot's previous key map (its odometry,
+/// 2 cm / 0.005 rad), of uncertainty weight `travelled` [m].
+inline void AppendKeyMap(KeyMapGraph* graph, KeyMapNode node, double travelled) {
+  const int robot = node.robot;
+  const int previous = graph->LastKeyMap(robot);
+  const int id = graph->AddKeyMap(std::move(node));
+  if (previous >= 0) {
+    EdgeRecord edge;
+    edge.from = previous;
+    edge.to = id;
+    edge.T_from_to = Between(graph->node(previous).T_odom_key, graph->node(id).T_odom_key);
+    edge.information = Information(0.02, 0.005);
+    graph->AddEdge(edge, travelled);
+  }
+}
+
 struct Team {
   KeyMapGraph graph{2, {}};
   std::vector<Pose2> truth;
@@ -57,16 +73,7 @@ struct Team {
         node.travel = 2.0 * v;
         node.T_odom_key = r == 0 ? truth.back() : T_1_world * truth.back();
         node.alignable = true;
-        const int previous = graph.LastKeyMap(r);
-        const int id = graph.AddKeyMap(std::move(node));
-        if (previous >= 0) {
-          EdgeRecord edge;
-          edge.from = previous;
-          edge.to = id;
-          edge.T_from_to = Between(graph.node(previous).T_odom_key, graph.node(id).T_odom_key);
-          edge.information = Information(0.02, 0.005);
-          graph.AddEdge(edge, 2.0);
-        }
+        AppendKeyMap(&graph, std::move(node), 2.0);
       }
     }
   }
