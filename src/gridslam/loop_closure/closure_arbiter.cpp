@@ -60,6 +60,10 @@ Pose2 ClosureError(const Match& match, const GraphView& graph) {
   return Pose2(measured.x(), measured.y(), error.theta());
 }
 
+double DriftBound(double u, double theta, const LoopClosureOptions& options) {
+  return options.max_drift * u + std::abs(theta) * 0.5 * u;
+}
+
 bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
   return error.translation().norm() <= options.gate_xy + options.gate_xy_per_m * u &&
          std::abs(error.theta()) <= options.gate_theta + options.gate_theta_per_m * u;
@@ -168,7 +172,8 @@ Decision ClosureArbiter::OfferWithinMap(const Match& match, double u, const Grap
     decision.verdict = Verdict::kAccept;
     return decision;
   }
-  const double max_correction = std::max(options_.max_correction, options_.max_drift * u);
+  const double max_correction =
+      std::max(options_.max_correction, DriftBound(u, decision.error.theta(), options_));
   if (decision.error.translation().norm() > max_correction ||
       std::abs(decision.error.theta()) > options_.max_correction_theta) {
     decision.verdict = Verdict::kReject;

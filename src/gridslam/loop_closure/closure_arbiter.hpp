@@ -95,6 +95,12 @@ struct Decision {
 /// Between(predicted, measured): how far the match is from the current estimate; for a ridge,
 /// without the translation along its free axis.
 [[nodiscard]] Pose2 ClosureError(const Match& match, const GraphView& graph);
+/// The largest translation a match inside one map may correct as drift of the path between its
+/// key maps, `u` [m] their uncertainty distance: max_drift * u of translation drift, plus what
+/// the match's own rotation correction `theta` [rad] displaces. However that heading error
+/// accrued along the path, it turned the rest of the path about points at most u / 2 from the
+/// revisit (the path leaves the place and comes back), so by at most |theta| * u / 2 [m].
+[[nodiscard]] double DriftBound(double u, double theta, const LoopClosureOptions& options);
 /// The consistency gate: `error` within gate_xy + gate_xy_per_m * u and gate_theta +
 /// gate_theta_per_m * u, u the uncertainty distance between the key maps [m].
 [[nodiscard]] bool InGate(const Pose2& error, double u, const LoopClosureOptions& options);

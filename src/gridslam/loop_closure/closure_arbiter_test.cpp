@@ -277,6 +277,30 @@ TEST(ClosureArbiter, WithinMapRejectsAMatchThatWouldMoveTheMapTooFar) {
   EXPECT_TRUE(arbiter.within_map().empty());
 }
 
+TEST(ClosureArbiter, DriftBoundAddsTheDisplacementOfTheRotationCorrection) {
+  LoopClosureOptions options;
+  options.max_drift = 0.05;
+  EXPECT_DOUBLE_EQ(DriftBound(100.0, 0.0, options), 5.0);
+  EXPECT_DOUBLE_EQ(DriftBound(100.0, 0.2, options), 5.0 + 10.0);
+  EXPECT_DOUBLE_EQ(DriftBound(100.0, -0.2, options), 5.0 + 10.0);
+}
+
+TEST(ClosureArbiter, WithinMapWaitsOnADisplacementItsHeadingErrorExplains) {
+  // 60 m out along a line whose estimate turned by 0.3 rad at its start: the revisit of key map
+  // 60 by key map 0's neighbourhood is displaced by about 18 m, more than max_drift * u (5 m) and
+  // the 10 m floor, but what a heading error of 0.3 rad does to a path 100 m long.
+  const Line turned(61, 1, Pose2(0.0, 0.0, 0.3));
+  ClosureArbiter arbiter{LoopClosureOptions{}};
+  const Decision d = arbiter.OfferWithinMap(turned.Closure(0, 60), 100.0, turned.graph);
+  ASSERT_GT(d.error.translation().norm(), 15.0);
+  EXPECT_EQ(d.verdict, Verdict::kWait);
+  // The same displacement with no heading error is not drift: refused as a look-alike.
+  const Line shifted(61, 1, Pose2(0.0, d.error.translation().norm(), 0.0));
+  ClosureArbiter other{LoopClosureOptions{}};
+  EXPECT_EQ(other.OfferWithinMap(shifted.Closure(0, 60), 100.0, shifted.graph).verdict,
+            Verdict::kReject);
+}
+
 TEST(ClosureArbiter, WithinMapAcceptsIndependentConsistentMatchesTogether) {
   const TwoRobots robots(Pose2(2.0, 0.0, 0.0), true);
   LoopClosureOptions options;

@@ -59,8 +59,10 @@ struct LoopClosureOptions {
   /// (docs/multi_robot.md; 8 m delays joins and was worse) [m].
   double independent_travel = 5.0;
   /// An appearance match within one map that disagrees with the estimate is refused as aliasing
-  /// when it would move the map by more than max(max_correction, max_drift * the uncertainty
-  /// distance between the key maps) [m], [-], or turn it by more than max_correction_theta [rad].
+  /// when it would move the map by more than max(max_correction, max_drift * u + |theta| * u / 2)
+  /// [m], [-], u the uncertainty distance between the key maps and theta the match's rotation
+  /// correction (the displacement that heading error causes, closure_arbiter.hpp DriftBound), or
+  /// turn it by more than max_correction_theta [rad].
   double max_correction = 10.0;
   double max_drift = 0.05;
   double max_correction_theta = 0.5;
@@ -130,8 +132,8 @@ struct LoopClosureOptions {
     v("independent_travel", independent_travel,
       "Appearance matches are independent evidence when this far apart along both paths [m]");
     v("max_correction", max_correction,
-      "Appearance matches moving the map more than max(this, max_drift * uncertainty distance) "
-      "are refused [m]");
+      "Appearance matches moving the map more than max(this, max_drift * u + |rotation| * u / 2), "
+      "u the uncertainty distance, are refused [m]");
     v("max_drift", max_drift, "... drift per metre of uncertainty distance [-]");
     v("max_correction_theta", max_correction_theta,
       "Appearance matches turning the map more than this are refused [rad]");

@@ -159,8 +159,10 @@ bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distanc
       return error.translation().norm() > options.graph.online_trigger_xy ||
              std::abs(error.theta()) > options.graph.online_trigger_theta;
     case Verdict::kReject:
-      GRIDSLAM_LOG_DEBUG("appearance match {}-{} rejected: moves the map {:.2f} m {:.3f} rad",
-                         match.i, match.k, error.translation().norm(), error.theta());
+      GRIDSLAM_LOG_DEBUG(
+          "appearance match {}-{} rejected: moves the map {:.2f} m {:.3f} rad (uncertainty "
+          "distance {:.1f} m)",
+          match.i, match.k, error.translation().norm(), error.theta(), uncertainty_distance);
       return false;
     case Verdict::kWait: {
       GRIDSLAM_LOG_DEBUG("appearance match {}-{} off by {:.2f} m {:.3f} rad: waits", match.i,
@@ -173,7 +175,8 @@ bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distanc
       // max_correction is for matches with independent support (a look-alike room of a short
       // loop would otherwise pass).
       const bool plausible =
-          error.translation().norm() <= options.loop_closure.max_drift * uncertainty_distance;
+          error.translation().norm() <=
+          loop_closure::DriftBound(uncertainty_distance, error.theta(), options.loop_closure);
       if (plausible && loop_verified_k != match.k) {
         loop_verified_k = match.k;
         loop_hypothesis = match;
