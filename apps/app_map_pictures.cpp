@@ -41,18 +41,20 @@ struct Canvas {
   }
 };
 
-Canvas MakeCanvas(const OccupancyImage& map) {
+/// `channels` 1: grey levels (map.png); 3: BGR, for the coloured layers of map_graph.png.
+Canvas MakeCanvas(const OccupancyImage& map, int channels) {
   const MapLimits& limits = map.Limits();
   Canvas canvas{
       cv::Mat(kMarginTop + limits.Height() + kMarginBottom,
-              kMarginLeft + limits.Width() + kMarginRight, CV_8UC3, cv::Scalar(255, 255, 255)),
+              kMarginLeft + limits.Width() + kMarginRight, CV_8UC(channels), cv::Scalar::all(255)),
       limits};
   for (int j = 0; j < limits.Height(); ++j) {
+    std::uint8_t* row = canvas.image.ptr<std::uint8_t>(kMarginTop + limits.Height() - 1 - j) +
+                        kMarginLeft * channels;
     for (int i = 0; i < limits.Width(); ++i) {
       const signed char v = map(i, j);
       const std::uint8_t g = v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
-      canvas.image.at<cv::Vec3b>(kMarginTop + limits.Height() - 1 - j, kMarginLeft + i) =
-          cv::Vec3b(g, g, g);
+      std::fill(row + i * channels, row + (i + 1) * channels, g);
     }
   }
   return canvas;
@@ -140,14 +142,14 @@ double TickSpacing(double length_m) {
 }
 
 Status WriteMapPicture(const std::string& path, const OccupancyImage& map) {
-  Canvas canvas = MakeCanvas(map);
+  Canvas canvas = MakeCanvas(map, 1);  // black, white and grey: one channel is a third to encode
   DrawAxesAndScale(canvas);
   return Write(path, canvas.image);
 }
 
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
                          const pipeline::MapperResult& result, int component) {
-  Canvas canvas = MakeCanvas(map);
+  Canvas canvas = MakeCanvas(map, 3);
   std::vector<std::size_t> robots;
   for (std::size_t r = 0; r < result.trajectories.size(); ++r) {
     if (result.component_of_robot[r] != component) {

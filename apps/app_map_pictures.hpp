@@ -22,7 +22,7 @@ Bgr RobotColour(std::size_t robot);
 double TickSpacing(double length_m);
 
 /// map.png: the occupancy map (free white, occupied black, unknown grey) with axes in metres of
-/// the map frame along the left and bottom edges and a scale bar.
+/// the map frame along the left and bottom edges and a scale bar; an 8-bit grey PNG.
 Status WriteMapPicture(const std::string& path, const OccupancyImage& map);
 
 /// map_graph.png: map.png's picture plus the trajectories of the robots of map `component`, the

@@ -66,7 +66,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     total.Merge(check.stats);
     const std::string name =
         result.maps.size() == 1 ? "map_quality.png" : "map_quality_" + std::to_string(c) + ".png";
-    const TiledGrid<float> share = quality::DisagreementShare(check, options);
+    const TiledGrid<float> share = quality::DisagreementShare(check, options, 0.02F, threads);
     check = quality::SelfCheckResult{check.stats, {}, {}};  // the per-cell counts are done
     ReleaseFreedMemory();
     const cv::Mat image = quality::RenderQualityImage(result.maps[c], fusion, share);

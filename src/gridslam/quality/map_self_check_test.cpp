@@ -1,10 +1,12 @@
 #include "gridslam/quality/map_self_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "gridslam/quality/quality_image.hpp"
 
@@ -177,6 +179,42 @@ TEST(MapSelfCheck, HeatLayerMarksTheDisagreeingArea) {
   EXPECT_EQ(image.type(), CV_8UC3);
   EXPECT_EQ(image.rows, map.Height());
   EXPECT_EQ(image.cols, map.Width());
+}
+
+TEST(MapSelfCheck, HeatLayerIsAReflectedGaussianBlurWhateverTheThreads) {
+  const SelfCheckResult bad = Check(MakeRun(0.0, 0.5));
+  const SelfCheckOptions options;
+  const TiledGrid<float> one = DisagreementShare(bad, options, 0.02F, 1);
+  const TiledGrid<float> three = DisagreementShare(bad, options, 0.02F, 3);
+  const Grid2D<float> a = one.ToDense();
+  const Grid2D<float> b = three.ToDense();
+  ASSERT_EQ(a.Cells().size(), b.Cells().size());
+  EXPECT_TRUE(std::equal(a.Cells().begin(), a.Cells().end(), b.Cells().begin()));
+  // The reference: OpenCV's blur of the whole grids, reflected at the edges (BORDER_REFLECT_101).
+  const Grid2D<float> returns = bad.returns_per_cell.ToDense();
+  const Grid2D<float> disagreeing = bad.disagreeing_per_cell.ToDense();
+  const int w = returns.Width();
+  const int h = returns.Height();
+  cv::Mat r(h, w, CV_32F, const_cast<float*>(returns.Cells().data()));
+  cv::Mat d(h, w, CV_32F, const_cast<float*>(disagreeing.Cells().data()));
+  const double sigma = options.heat_radius / returns.Limits().Resolution();
+  cv::Mat rb;
+  cv::Mat db;
+  cv::GaussianBlur(r, rb, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT_101);
+  cv::GaussianBlur(d, db, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT_101);
+  int compared = 0;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const float rr = rb.at<float>(j, i);
+      if (rr < 0.05F) {
+        continue;  // near the 0.02 threshold the two summation orders may disagree
+      }
+      ++compared;
+      const float expected = std::clamp(db.at<float>(j, i) / rr, 0.0F, 1.0F);
+      ASSERT_NEAR(one.Get(i, j), expected, 1e-4) << "cell " << i << ", " << j;
+    }
+  }
+  EXPECT_GT(compared, 1000);
 }
 
 TEST(SelfCheckStats, SharesAndMerge) {

@@ -1,6 +1,7 @@
 #include "gridslam/quality/quality_image.hpp"
 
 #include <algorithm>
+#include <thread>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -14,19 +15,38 @@ namespace {
 
 constexpr int kTile = TiledGrid<float>::kTileSize;
 
-/// The cells [i0, i0 + n) of row j of `grid`, reflected at the grid's edges (BORDER_REFLECT_101).
+/// The cells [i0, i0 + n) of row j of `grid`, reflected at the grid's edges (BORDER_REFLECT_101):
+/// the cells inside the grid copied a tile's run at a time.
 void ReflectedRow(const TiledGrid<float>& grid, int i0, int n, int j, float* out) {
   const int width = grid.Width();
   const int jj = cv::borderInterpolate(j, grid.Height(), cv::BORDER_REFLECT_101);
-  for (int m = 0; m < n; ++m) {
-    out[m] = grid.Get(cv::borderInterpolate(i0 + m, width, cv::BORDER_REFLECT_101), jj);
+  const int tj = jj >> TiledGrid<float>::kTileBits;
+  const std::size_t row = static_cast<std::size_t>(jj & (kTile - 1)) * kTile;
+  int m = 0;
+  while (m < n) {
+    const int i = i0 + m;
+    if (i < 0 || i >= width) {
+      out[m] = grid.Get(cv::borderInterpolate(i, width, cv::BORDER_REFLECT_101), jj);
+      ++m;
+      continue;
+    }
+    const int ti = i >> TiledGrid<float>::kTileBits;
+    const int run = std::min({n - m, (ti + 1) * kTile - i, width - i});
+    const float* tile = grid.Tile(ti, tj);
+    if (tile == nullptr) {
+      std::fill(out + m, out + m + run, grid.Fill());
+    } else {
+      const float* from = tile + row + static_cast<std::size_t>(i & (kTile - 1));
+      std::copy(from, from + run, out + m);
+    }
+    m += run;
   }
 }
 
 }  // namespace
 
 TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
-                                   float min_returns) {
+                                   float min_returns, int threads) {
   const TiledGrid<float>& returns = result.returns_per_cell;
   const TiledGrid<float>& disagreeing = result.disagreeing_per_cell;
   const MapLimits& limits = returns.Limits();
@@ -63,19 +83,24 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
     }
   }
   // Separable filter, rows then columns, each output cell summed over the kernel in order: the
-  // value of a cell does not depend on the tiles around it.
+  // value of a cell does not depend on the tiles around it, nor on which thread computes it.
+  std::vector<int> tiles;
+  for (int t = 0; t < static_cast<int>(needed.size()); ++t) {
+    if (needed[static_cast<std::size_t>(t)]) {
+      tiles.push_back(t);
+    }
+  }
   const int span = kTile + 2 * r;
-  std::vector<float> row_r(static_cast<std::size_t>(span));
-  std::vector<float> row_d(static_cast<std::size_t>(span));
-  std::vector<float> h_r(static_cast<std::size_t>(span) * kTile);
-  std::vector<float> h_d(static_cast<std::size_t>(span) * kTile);
-  std::vector<float> v_r(static_cast<std::size_t>(kTile));
-  std::vector<float> v_d(static_cast<std::size_t>(kTile));
-  for (int tj = 0; tj < returns.TilesY(); ++tj) {
-    for (int ti = 0; ti < returns.TilesX(); ++ti) {
-      if (!needed[static_cast<std::size_t>(tj) * returns.TilesX() + ti]) {
-        continue;
-      }
+  const auto smooth = [&](std::size_t begin, std::size_t end) {
+    std::vector<float> row_r(static_cast<std::size_t>(span));
+    std::vector<float> row_d(static_cast<std::size_t>(span));
+    std::vector<float> h_r(static_cast<std::size_t>(span) * kTile);
+    std::vector<float> h_d(static_cast<std::size_t>(span) * kTile);
+    std::vector<float> v_r(static_cast<std::size_t>(kTile));
+    std::vector<float> v_d(static_cast<std::size_t>(kTile));
+    for (std::size_t n = begin; n < end; ++n) {
+      const int ti = tiles[n] % returns.TilesX();
+      const int tj = tiles[n] / returns.TilesX();
       const int i0 = ti * kTile;
       const int j0 = tj * kTile;
       const int w = std::min(limits.Width(), i0 + kTile) - i0;
@@ -95,6 +120,7 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
           }
         }
       }
+      float* out = nullptr;  // the share's tile, allocated at its first cell with returns
       for (int y = 0; y < h; ++y) {
         std::fill(v_r.begin(), v_r.end(), 0.0F);
         std::fill(v_d.begin(), v_d.end(), 0.0F);
@@ -110,12 +136,25 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
         for (int x = 0; x < w; ++x) {
           const float rr = v_r[static_cast<std::size_t>(x)];
           if (rr >= min_returns) {
-            share.Mutable(i0 + x, j0 + y) =
+            // Tiles are allocated slot by slot: threads write disjoint tiles of a fixed table.
+            out = out != nullptr ? out : share.MutableTile(ti, tj);
+            out[TiledGrid<float>::InTile(i0 + x, j0 + y)] =
                 std::clamp(v_d[static_cast<std::size_t>(x)] / rr, 0.0F, 1.0F);
           }
         }
       }
     }
+  };
+  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
+                                                    std::max<std::size_t>(1, tiles.size()));
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < parts; ++t) {
+    workers.emplace_back(
+        [&, t] { smooth(tiles.size() * t / parts, tiles.size() * (t + 1) / parts); });
+  }
+  smooth(0, tiles.size() / parts);
+  for (std::thread& worker : workers) {
+    worker.join();
   }
   return share;
 }
@@ -144,7 +183,8 @@ cv::Mat Render(const MapLimits& limits, Occupancy occupancy, const TiledGrid<flo
 }  // namespace
 
 cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share) {
-  return Render(map.Limits(), [&](int i, int j) { return map(i, j); }, share);
+  return Render(
+      map.Limits(), [&](int i, int j) { return map(i, j); }, share);
 }
 
 cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,

@@ -14,9 +14,10 @@ namespace gridslam::quality {
 /// Local share of disagreeing returns, smoothed over options.heat_radius (a Gaussian of that
 /// standard deviation, the kernel of cv::GaussianBlur, reflected at the map's edges); -1 where
 /// fewer than `min_returns` (smoothed) returns per cell fell. Same limits as the map; only the
-/// tiles near returns are computed and stored.
+/// tiles near returns are computed and stored, `threads` at once (each tile on its own: the
+/// result does not depend on the thread count).
 TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfCheckOptions& options,
-                                   float min_returns = 0.02F);
+                                   float min_returns = 0.02F, int threads = 1);
 
 /// BGR image (row 0 at the top, as map.png): grey occupancy, red where the share is high
 /// (full red at a share of 0.5 or more).
