@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "gridslam/common/parallel.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/ray_casting.hpp"
 #include "gridslam/grid/scan_points.hpp"
@@ -110,20 +111,12 @@ PreparedScans Prepare(const std::vector<PosedScan>& scans, const FusionOptions& 
       }
     }
   };
-  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
-                                                    std::max<std::size_t>(1, selected.size()));
+  const std::size_t parts = PartCount(selected.size(), threads);
   std::vector<Eigen::Vector2d> lo(parts, prepared.lo);
   std::vector<Eigen::Vector2d> hi(parts, prepared.hi);
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < parts; ++t) {
-    workers.emplace_back([&, t] {
-      prepare(selected.size() * t / parts, selected.size() * (t + 1) / parts, lo[t], hi[t]);
-    });
-  }
-  prepare(0, selected.size() / parts, lo[0], hi[0]);
-  for (std::thread& w : workers) {
-    w.join();
-  }
+  RunParts(selected.size(), parts, [&](std::size_t part, std::size_t begin, std::size_t end) {
+    prepare(begin, end, lo[part], hi[part]);
+  });
   for (std::size_t t = 0; t < parts; ++t) {  // min and max: the same in any order
     prepared.lo = prepared.lo.cwiseMin(lo[t]);
     prepared.hi = prepared.hi.cwiseMax(hi[t]);

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 
+#include "gridslam/common/parallel.hpp"
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/scan_points.hpp"
@@ -209,17 +209,9 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
       lookup(&Return::to_not_free);
     }
   };
-  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
-                                                    std::max<std::size_t>(1, blocks.size()));
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < parts; ++t) {
-    workers.emplace_back(
-        [&, t] { distances(blocks.size() * t / parts, blocks.size() * (t + 1) / parts); });
-  }
-  distances(0, blocks.size() / parts);
-  for (std::thread& w : workers) {
-    w.join();
-  }
+  RunParts(
+      blocks.size(), PartCount(blocks.size(), threads),
+      [&](std::size_t /*part*/, std::size_t begin, std::size_t end) { distances(begin, end); });
   // Cell-centre distances are multiples of the resolution: a small slack keeps "within 2 cells"
   // exact at agreement_distance = 2 * resolution.
   const double agree = options.agreement_distance + 1e-6;

@@ -1,12 +1,12 @@
 #include "gridslam/quality/quality_image.hpp"
 
 #include <algorithm>
-#include <thread>
 #include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "gridslam/common/parallel.hpp"
 #include "gridslam/grid/log_odds.hpp"
 
 namespace gridslam::quality {
@@ -145,17 +145,8 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
       }
     }
   };
-  const std::size_t parts = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1,
-                                                    std::max<std::size_t>(1, tiles.size()));
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < parts; ++t) {
-    workers.emplace_back(
-        [&, t] { smooth(tiles.size() * t / parts, tiles.size() * (t + 1) / parts); });
-  }
-  smooth(0, tiles.size() / parts);
-  for (std::thread& worker : workers) {
-    worker.join();
-  }
+  RunParts(tiles.size(), PartCount(tiles.size(), threads),
+           [&](std::size_t /*part*/, std::size_t begin, std::size_t end) { smooth(begin, end); });
   return share;
 }
 
