@@ -87,7 +87,8 @@ Status FrontEndOptions::Validate() const {
       Require(adaptive_window > 0 && adaptive_min_scale > 0.0 && adaptive_min_scale <= 1.0,
               "front_end.adaptive_window > 0, 0 < adaptive_min_scale <= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(odometry_check.Valid(),
-                                   "front_end.odometry_check: window > 0, sigmas > 0, floors > 0"));
+                                   "front_end.odometry_check: window > 0, sigmas > 0, floors > 0, "
+                                   "velocity_baseline > 0, max_acceleration > 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(
       wide_search.linear_window >= 0.0 && wide_search.linear_step >= 1 &&
           wide_search.angular_window >= 0.0 && wide_search.angular_step > 0.0 &&
@@ -219,9 +220,14 @@ MatchResult FrontEnd::MatchWithoutTrustedOdometry(const ScanPoints& points,
     // Both matches search the same small region around their own prediction, so their scores
     // compare like for like: the better explained pose wins by a clear margin, whatever the
     // scene's usual score (a hall's returns fit worse than an office's everywhere).
+    // An impossible increment (faster than traction allows) is a glitch: there the burden of
+    // proof turns, and the constant velocity keeps the frame unless the odometry's pose explains
+    // the scan clearly better (a corridor explains both alike).
     const bool overrule =
         from_velocity.ok && !same &&
-        (!from_odometry.ok || from_velocity.score > from_odometry.score + kScoreMargin);
+        (prediction.impossible
+             ? !(from_odometry.ok && from_odometry.score > from_velocity.score + kScoreMargin)
+             : (!from_odometry.ok || from_velocity.score > from_odometry.score + kScoreMargin));
     *velocity_preferred = overrule;
     // No wide search here: the robot moved smoothly even if its odometry jumped, so the pose is
     // near the constant velocity, whose match already searches around it (±0.3 m, ±0.25 rad).

@@ -1,6 +1,7 @@
 #include "gridslam/scan_matching/front_end.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -213,8 +214,8 @@ TEST(FrontEnd, OdometryGlitchesAreCaughtAndMatchedAway) {
   const std::vector<Pose2> truth = DriveThroughTheWorld();
   std::vector<Frame> frames = MakeFrames(truth);
   // Yaw jumps of 30-80 degrees while the robot drives or turns smoothly. (A translation jump is
-  // caught too, but where the scan cannot tell the two poses apart the odometry keeps the frame:
-  // see MatchWithoutTrustedOdometry.)
+  // caught too; where the scan cannot tell the two poses apart, the odometry keeps the frame
+  // unless the jump is beyond traction: TranslationGlitchesBeyondTraction... below.)
   InjectGlitch(&frames, 120, Pose2(0.0, 0.0, DegToRad(45.0)));
   InjectGlitch(&frames, 260, Pose2(0.0, 0.0, DegToRad(-80.0)));
   InjectGlitch(&frames, 340, Pose2(0.0, 0.0, DegToRad(60.0)));
@@ -237,6 +238,48 @@ TEST(FrontEnd, OdometryGlitchesAreCaughtAndMatchedAway) {
   const auto [estimate_xy, estimate_theta] = RelativeError(truth, estimate, 20);
   EXPECT_LT(estimate_xy, 0.02);
   EXPECT_LT(estimate_theta, DegToRad(0.5));
+}
+
+// A corridor 2 m wide and 105 m long: from x = 25 m to 70 m no end wall is within the laser's
+// 30 m, so nothing the scan sees measures the position along it.
+std::vector<internal::Segment> LongCorridor() {
+  return {{{-5.0, -1.0}, {100.0, -1.0}},
+          {{-5.0, 1.0}, {100.0, 1.0}},
+          {{-5.0, -1.0}, {-5.0, 1.0}},
+          {{100.0, -1.0}, {100.0, 1.0}}};
+}
+
+TEST(FrontEnd, TranslationGlitchesBeyondTractionDoNotMoveTheEstimateAlongACorridor) {
+  const std::vector<Pose2> truth = Drive(Pose2(0.0, 0.0, 0.0), {{60.0, 0.0}});
+  ASSERT_GT(truth.size(), 1400U);
+  std::vector<Frame> frames = MakeFrames(truth, LongCorridor());
+  const std::vector<Frame> clean = frames;
+  // Jumps of 0.4-0.8 m along the corridor in one 0.1 s step (1 g allows 5 cm) at x = 28-52 m.
+  InjectGlitch(&frames, 700, Pose2(0.6, 0.0, 0.0));
+  InjectGlitch(&frames, 900, Pose2(0.5, 0.0, 0.0));
+  InjectGlitch(&frames, 1100, Pose2(-0.4, 0.0, 0.0));
+  InjectGlitch(&frames, 1300, Pose2(0.8, 0.0, 0.0));
+  auto run = [&](const std::vector<Frame>& input, const FrontEndOptions& options) {
+    FrontEnd front_end(options);
+    std::vector<Pose2> estimate;
+    for (const Frame& frame : input) {
+      estimate.push_back(front_end.AddFrame(frame).T_odom_base);
+    }
+    return EndError(truth, estimate);
+  };
+  // Along the corridor the odometry carries the estimate, with its 2 % scale error.
+  const double without_glitches = run(clean, FrontEndOptions{});
+  // Without the physical limit the scan cannot tell the glitched pose from the constant
+  // velocity's, and the odometry keeps the frame: every jump stays in the estimate.
+  FrontEndOptions no_limit;
+  no_limit.odometry_check.max_acceleration = 1e9;
+  const double followed = run(frames, no_limit);
+  // With it the glitched increments are no measurement, and the constant velocity holds.
+  const double held = run(frames, FrontEndOptions{});
+  EXPECT_GT(followed, without_glitches + 1.0);
+  EXPECT_LT(held, without_glitches + 0.1);
+  std::printf("end error: no glitches %.3f m, glitches followed %.3f m, held %.3f m\n",
+              without_glitches, followed, held);
 }
 
 // The robot drives east, then reverses back west along the same line without turning, at 0.32 m

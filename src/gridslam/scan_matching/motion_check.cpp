@@ -97,6 +97,7 @@ MotionPrediction MotionCheck::Predict(Time time, const std::optional<Pose2>& odo
              (prediction.innovation_xy > ThresholdXy() ||
               prediction.innovation_theta > ThresholdTheta())) {
     prediction.check = OdometryCheck::kDoubtful;
+    prediction.impossible = prediction.innovation_xy > 0.5 * options_.max_acceleration * dt * dt;
   } else if (options_.enabled && overruled_) {
     prediction.check = OdometryCheck::kDoubtful;
     prediction.after_overrule = true;

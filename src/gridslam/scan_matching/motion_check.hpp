@@ -44,6 +44,11 @@ struct MotionCheckOptions {
   /// The velocity is the estimated motion over the last this many seconds: long enough that
   /// timestamp jitter and the matcher's millimetres do not dominate it [s].
   double velocity_baseline = 1.0;
+  /// The physical limit: no ground robot's velocity changes faster than its wheels' traction
+  /// allows, below 1 g (a friction coefficient below 1). An increment whose translation departs
+  /// from the constant velocity by more than max_acceleration * dt^2 / 2 over the scan interval
+  /// dt is impossible, not merely doubtful (MotionPrediction::impossible) [m/s^2].
+  double max_acceleration = 9.81;
 
   template <class V>
   void Visit(V& v) {
@@ -54,10 +59,13 @@ struct MotionCheckOptions {
     v("floor_theta", floor_theta, "Yaw innovations below this are never doubtful [rad]");
     v("velocity_baseline", velocity_baseline,
       "The velocity is the estimated motion over this last stretch of time [s]");
+    v("max_acceleration", max_acceleration,
+      "Increments departing from the recent velocity by more than this acceleration allows "
+      "over the scan interval are impossible, not merely doubtful [m/s^2]");
   }
   [[nodiscard]] bool Valid() const {
     return window > 0 && sigmas > 0.0 && floor_xy > 0.0 && floor_theta > 0.0 &&
-           velocity_baseline > 0.0;
+           velocity_baseline > 0.0 && max_acceleration > 0.0;
   }
 };
 
@@ -73,6 +81,9 @@ struct MotionPrediction {
   /// reversal or a slip looks consistent with itself afterwards, so it stays doubtful until a
   /// match confirms it.
   bool after_overrule = false;
+  /// Doubtful, and beyond the physical limit (MotionCheckOptions::max_acceleration): the
+  /// increment is a glitch, not a manoeuvre, so it is no measurement of the motion.
+  bool impossible = false;
 };
 
 class MotionCheck {

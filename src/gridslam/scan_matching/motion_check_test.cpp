@@ -71,6 +71,42 @@ TEST_F(MotionCheckTest, AYawOrTranslationJumpIsDoubtfulAndTheConstantVelocityHol
   }
 }
 
+TEST_F(MotionCheckTest, AJumpBeyondTractionIsImpossibleAManoeuvreOnlyDoubtful) {
+  check_.Reset(At(0.0), odometry_, truth_);
+  Drive(50);
+  // Scans 0.2 s apart: 1 g over the interval moves the robot 9.81 * 0.2^2 / 2 = 0.196 m.
+  struct Case {
+    Pose2 jump;
+    bool impossible;
+  };
+  for (const Case& c :
+       {Case{Pose2(0.5, 0.0, 0.0), true}, Case{Pose2(0.0, -0.6, 0.0), true},
+        Case{Pose2(0.15, 0.0, 0.0), false}, Case{Pose2(0.0, 0.0, DegToRad(40.0)), false}}) {
+    truth_ = truth_ * Pose2(0.1, 0.0, 0.02);
+    odometry_ = odometry_ * Pose2(0.1, 0.0, 0.02) * c.jump;
+    t_ += 0.2;
+    const MotionPrediction p = check_.Predict(At(t_), odometry_);
+    EXPECT_EQ(p.check, OdometryCheck::kDoubtful);
+    EXPECT_EQ(p.impossible, c.impossible) << "jump " << c.jump.x() << " " << c.jump.y();
+    check_.Update(At(t_), odometry_, truth_, p, /*odometry_overruled=*/true);
+    truth_ = truth_ * Pose2(0.1, 0.0, 0.02);  // the match confirms the next increment
+    odometry_ = odometry_ * Pose2(0.1, 0.0, 0.02);
+    t_ += 0.2;
+    const MotionPrediction next = check_.Predict(At(t_), odometry_);
+    EXPECT_FALSE(next.impossible);
+    check_.Update(At(t_), odometry_, truth_, next, /*odometry_overruled=*/false);
+    Drive(10);
+  }
+  // The same 0.5 m beyond the recent velocity over a 1 s gap between scans: doubtful, but a
+  // robot can change its speed that much in a second.
+  truth_ = truth_ * Pose2(0.5, 0.0, 0.1);
+  odometry_ = odometry_ * Pose2(0.5, 0.0, 0.1) * Pose2(0.5, 0.0, 0.0);
+  t_ += 1.0;
+  const MotionPrediction late = check_.Predict(At(t_), odometry_);
+  EXPECT_EQ(late.check, OdometryCheck::kDoubtful);
+  EXPECT_FALSE(late.impossible);
+}
+
 TEST_F(MotionCheckTest, MissingOdometryPredictsTheConstantVelocity) {
   check_.Reset(At(0.0), odometry_, truth_);
   Drive(10);
