@@ -6,8 +6,8 @@
 //     recent ones of as many distinct new key maps form mutually consistent loops with the
 //     graph, the estimate was what was wrong, and they are accepted together;
 //   - within_map: appearance matches inside one map component that disagree with the estimate
-//     (but not by more than max_correction); accepted with enough independent, consistent
-//     matches between the same two robots;
+//     (but not by more than DriftBound allows, max_correction at least); accepted with enough
+//     independent, consistent matches between the same two robots;
 //   - joinable: matches between two map components not joined yet; min_join_matches
 //     independent, consistent ones join the components (the caller joins them, then calls
 //     ForgetWithinComponents).
