@@ -41,7 +41,7 @@ std::vector<std::vector<Frame>> Simulated(const char* world_name, int robots, do
 }
 
 MappedRun Map(const std::vector<std::vector<Frame>>& logs, int threads, bool ask_every_frame,
-        int key_map_cache = 64) {
+              int key_map_cache = 64) {
   SlamOptions options;
   options.compute.threads = threads;
   options.compute.key_map_cache = key_map_cache;
