@@ -19,6 +19,8 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"verified", s.verified},
         {"found_by_prior_refinement", s.prior_refined},
         {"prior_searches", s.prior_searches},
+        {"prior_wide_searches", s.prior_wide_searches},
+        {"found_by_prior_wide_search", s.prior_wide_found},
         {"prior_ridges", s.prior_ridges},
         {"verified_loops", s.verified_loops},
         {"key_map_fields_recomputed", s.geometry_recomputed},

@@ -118,6 +118,24 @@ int Support(const Match& match, const std::vector<Match>& pool, const GraphView&
   }));
 }
 
+bool ClosureArbiter::IndependentEnough(const std::vector<Match>& group,
+                                       const GraphView& graph) const {
+  // A wide window may hold a look-alike of the place (a row of identical bays, a road between
+  // trees), and the key maps along the revisit see it alike: their matches agree whether it is
+  // the place or not. Two matches far apart along both paths see two places.
+  if (std::none_of(group.begin(), group.end(), [](const Match& m) { return m.wide_search; })) {
+    return true;
+  }
+  for (std::size_t a = 0; a < group.size(); ++a) {
+    for (std::size_t b = a + 1; b < group.size(); ++b) {
+      if (Independent(group[a], group[b], graph, options_.independent_travel)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_search,
                                     const GraphView& graph) {
   Decision decision;
@@ -144,14 +162,15 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
       }
     }
   }
-  if (static_cast<int>(evidence.size()) < options_.min_consistent_gated) {
+  const std::vector<Match>& group = decision.accepted;
+  if (static_cast<int>(evidence.size()) < options_.min_consistent_gated ||
+      !IndependentEnough(group, graph)) {
     decision.verdict = Verdict::kWait;
     decision.accepted.resize(1);
     gated_.push_back(match);
     return decision;
   }
   decision.verdict = Verdict::kAcceptGroup;
-  const std::vector<Match>& group = decision.accepted;
   gated_.erase(std::remove_if(gated_.begin(), gated_.end(),
                               [&](const Match& g) {
                                 return std::any_of(group.begin(), group.end(), [&](const Match& m) {

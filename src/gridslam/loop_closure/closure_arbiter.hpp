@@ -47,6 +47,9 @@ struct Match {
   /// Standard deviation of the translation along free_axis [m]: the spread of the window the
   /// search covered (uniform over +-w: w / sqrt(3)). Positive when free_axis is set.
   double free_sigma = 0.0;
+  /// Found by the prior search's second, wide window (prior_search.hpp wide_window_per_m): a
+  /// group that holds it is accepted only with two independent matches in it.
+  bool wide_search = false;
 };
 
 /// The match seen from the other side: i's pose in k's frame (the free axis rotated with it).
@@ -127,7 +130,9 @@ class ClosureArbiter {
 
   /// A prior-based closure (the candidate was predicted by the estimate); `u` the uncertainty
   /// distance between its key maps; `from_search`: found by the correlative prior search, never
-  /// trusted alone (outside the gate by definition). kAccept, kAcceptGroup (with gated closures
+  /// trusted alone (outside the gate by definition); a group holding a match.wide_search needs
+  /// two matches in it that are Independent (neighbouring key maps see one place, a look-alike
+  /// as consistently as the truth). kAccept, kAcceptGroup (with gated closures
   /// of the last gated_window key maps, which leave the queue) or kWait (queued as gated).
   Decision OfferPrior(const Match& match, double u, bool from_search, const GraphView& graph);
 
@@ -149,6 +154,10 @@ class ClosureArbiter {
   [[nodiscard]] const LoopClosureOptions& options() const { return options_; }
 
  private:
+  /// True unless `group` holds a wide-search match and no two of its matches are Independent.
+  [[nodiscard]] bool IndependentEnough(const std::vector<Match>& group,
+                                       const GraphView& graph) const;
+
   LoopClosureOptions options_;
   std::vector<Match> gated_;
   std::vector<Match> within_map_;

@@ -141,6 +141,34 @@ TEST(ClosureArbiter, MatchesOfOneKeyMapCountOnceInAGatedGroup) {
   EXPECT_TRUE(arbiter.gated().empty());
 }
 
+// The prior search's wide window may hold a look-alike, and neighbouring key maps see it alike:
+// three consistent wide-search matches of key maps a metre apart are one piece of evidence. A
+// fourth match, far from the first along both paths, makes the group.
+TEST(ClosureArbiter, AWideSearchGroupNeedsTwoIndependentMatches) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  LoopClosureOptions options;
+  ASSERT_EQ(options.min_consistent_gated, 3);
+  ASSERT_DOUBLE_EQ(options.independent_travel, 5.0);
+  const auto wide = [&](int i, int k) {
+    Match m = line.Closure(i, k);
+    m.wide_search = true;
+    return m;
+  };
+  ClosureArbiter arbiter(options);
+  EXPECT_EQ(arbiter.OfferPrior(wide(2, 30), 2.0, true, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(wide(3, 31), 2.0, true, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(wide(4, 32), 2.0, true, line.graph).verdict, Verdict::kWait);
+  const Decision d = arbiter.OfferPrior(wide(9, 36), 2.0, true, line.graph);
+  EXPECT_EQ(d.verdict, Verdict::kAcceptGroup);
+  EXPECT_EQ(d.accepted.size(), 4U);
+  // The same three matches from the first window: accepted as before.
+  ClosureArbiter narrow(options);
+  EXPECT_EQ(narrow.OfferPrior(line.Closure(2, 30), 2.0, true, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(narrow.OfferPrior(line.Closure(3, 31), 2.0, true, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(narrow.OfferPrior(line.Closure(4, 32), 2.0, true, line.graph).verdict,
+            Verdict::kAcceptGroup);
+}
+
 TEST(ClosureArbiter, InconsistentGatedClosuresStayQueued) {
   const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
   ClosureArbiter arbiter{LoopClosureOptions{}};

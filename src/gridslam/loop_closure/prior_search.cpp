@@ -8,9 +8,10 @@
 namespace gridslam::loop_closure {
 
 Status PriorSearchOptions::Validate() const {
-  GRIDSLAM_RETURN_IF_ERROR(Require(window_per_m >= 0.0 && max_window_xy >= 0.0 &&
-                                       min_window_xy >= 0.0 && window_theta >= 0.0 &&
-                                       window_theta_per_m >= 0.0 && max_window_theta >= 0.0,
+  GRIDSLAM_RETURN_IF_ERROR(Require(window_per_m >= 0.0 && wide_window_per_m >= 0.0 &&
+                                       max_window_xy >= 0.0 && min_window_xy >= 0.0 &&
+                                       window_theta >= 0.0 && window_theta_per_m >= 0.0 &&
+                                       max_window_theta >= 0.0,
                                    "prior_search windows >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(linear_step > 0.0 && angular_step > 0.0, "prior_search steps > 0"));
@@ -421,6 +422,10 @@ PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<f
 
 double PriorSearchOptions::WindowXy(double uncertainty_distance) const {
   return std::min(max_window_xy, window_per_m * uncertainty_distance);
+}
+
+double PriorSearchOptions::WideWindowXy(double uncertainty_distance) const {
+  return std::min(max_window_xy, wide_window_per_m * uncertainty_distance);
 }
 
 double PriorSearchOptions::WindowTheta(double uncertainty_distance) const {

@@ -31,7 +31,13 @@ struct PriorSearchOptions {
   /// the key maps (graph path length, a drift rate) ... [m/m]
   double window_per_m = 0.02;
   double max_window_xy = 10.0;  ///< ... capped here [m].
-  double min_window_xy = 0.5;   ///< Smaller windows: the refinement alone is used [m].
+  /// When that window finds nothing, a second search covers the drift the loop-closure arbiter
+  /// allows an appearance match (loop_closure.max_drift, 5 % of the uncertainty distance; also
+  /// capped at max_window_xy). A drift that outgrew the first window lands here; so may a
+  /// look-alike, so its closures are accepted only in a group holding two independent matches
+  /// (closure_arbiter.hpp). 0 = no second search [m/m].
+  double wide_window_per_m = 0.05;
+  double min_window_xy = 0.5;  ///< Smaller windows: the refinement alone is used [m].
   /// Half-width of the rotation window: window_theta_per_m times the uncertainty distance (a
   /// heading drift rate) [rad/m], at least window_theta [rad], at most max_window_theta [rad].
   double window_theta_per_m = 0.0005;
@@ -59,6 +65,9 @@ struct PriorSearchOptions {
     v("window_per_m", window_per_m,
       "Translation half-window per metre of uncertainty distance (drift rate) [m/m]");
     v("max_window_xy", max_window_xy, "... capped here [m]");
+    v("wide_window_per_m", wide_window_per_m,
+      "Second search when the first finds nothing: half-window per metre of uncertainty "
+      "distance; its closures need independent support (0 = none) [m/m]");
     v("min_window_xy", min_window_xy, "Smaller windows: refine the prediction only [m]");
     v("window_theta_per_m", window_theta_per_m,
       "Rotation half-window per metre of uncertainty distance (heading drift rate) [rad/m]");
@@ -80,6 +89,8 @@ struct PriorSearchOptions {
   [[nodiscard]] Status Validate() const;
   /// The translation and rotation half-windows for an uncertainty distance [m] -> [m], [rad].
   [[nodiscard]] double WindowXy(double uncertainty_distance) const;
+  /// The second search's translation half-window [m] (0 when there is none).
+  [[nodiscard]] double WideWindowXy(double uncertainty_distance) const;
   [[nodiscard]] double WindowTheta(double uncertainty_distance) const;
 };
 

@@ -212,5 +212,20 @@ TEST(PriorSearch, BranchAndBoundFindsTheExhaustiveBest) {
   EXPECT_LT(scored, poses / 4);
 }
 
+// The second search covers the drift the arbiter allows (5 %), the first the usual one (2 %);
+// both stop at the cap, so past it there is no second search.
+TEST(PriorSearch, TheWideWindowCoversTheArbitersDriftUpToTheCap) {
+  const PriorSearchOptions options;
+  EXPECT_NEAR(options.WindowXy(100.0), 2.0, 1e-12);
+  EXPECT_NEAR(options.WideWindowXy(100.0), 5.0, 1e-12);
+  EXPECT_NEAR(options.WideWindowXy(1000.0), options.max_window_xy, 1e-12);
+  EXPECT_NEAR(options.WindowXy(1000.0), options.max_window_xy, 1e-12);
+  PriorSearchOptions none;
+  none.wide_window_per_m = 0.0;
+  EXPECT_EQ(none.WideWindowXy(100.0), 0.0);
+  none.wide_window_per_m = -0.1;
+  EXPECT_FALSE(none.Validate().ok());
+}
+
 }  // namespace
 }  // namespace gridslam::loop_closure

@@ -119,17 +119,32 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   const double window_theta = search.WindowTheta(uncertainty_distance);
   Pose2 start = T_i_k;
   bool searched = false;
+  bool wide = false;
   std::optional<Eigen::Vector2d> free_axis;
   double free_sigma = 0.0;
   if (search.enabled && window > search.min_window_xy) {
-    ++counters_.prior_searches;
-    const loop_closure::PriorSearchResult found = loop_closure::SearchAroundPrior(
-        geometry_b.obstacle_points, geometry_a.distance, T_i_k, window, window_theta, search);
-    GRIDSLAM_LOG_DEBUG(
-        "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
-        "poses scored, {}",
-        i, k, window, window_theta, found.score, found.rival, found.scored, found.poses,
-        found.ok ? "ok" : "refused");
+    const auto run = [&](double half_window) {
+      ++counters_.prior_searches;
+      const loop_closure::PriorSearchResult found =
+          loop_closure::SearchAroundPrior(geometry_b.obstacle_points, geometry_a.distance, T_i_k,
+                                          half_window, window_theta, search);
+      GRIDSLAM_LOG_DEBUG(
+          "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
+          "poses scored, {}",
+          i, k, half_window, window_theta, found.score, found.rival, found.scored, found.poses,
+          found.ok ? "ok" : "refused");
+      return found;
+    };
+    loop_closure::PriorSearchResult found = run(window);
+    // Nothing in the window of the usual drift: the drift the arbiter allows, if that is more
+    // than a search step wider (a look-alike may win there: its closures need independent
+    // support).
+    const double wide_window = search.WideWindowXy(uncertainty_distance);
+    if (!found.ok && wide_window > window + search.linear_step) {
+      found = run(wide_window);
+      wide = found.ok;
+      ++counters_.wide_searches;
+    }
     if (!found.ok) {
       return std::nullopt;
     }
@@ -137,7 +152,7 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     searched = true;
     if (found.ridge) {
       free_axis = found.ridge_axis;
-      free_sigma = window / std::sqrt(3.0);
+      free_sigma = (wide ? wide_window : window) / std::sqrt(3.0);
     }
   }
   const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
@@ -175,7 +190,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   }
   ++counters_.prior_refined;
   counters_.prior_ridges += free_axis.has_value() ? 1 : 0;
-  return Alignment{refined.T_a_b, searched, free_axis, free_sigma};
+  counters_.wide_found += wide ? 1 : 0;
+  return Alignment{refined.T_a_b, searched, free_axis, free_sigma, wide};
 }
 
 }  // namespace gridslam::pipeline

@@ -30,6 +30,8 @@ struct Alignment {
   /// direction, unit, in i's frame, along which T_i_k's translation is not measured.
   std::optional<Eigen::Vector2d> free_axis = std::nullopt;
   double free_sigma = 0.0;  ///< Standard deviation along free_axis (Match::free_sigma) [m].
+  /// Found by the search's second, wide window (the first found nothing; prior_search.hpp).
+  bool wide_search = false;
 };
 
 class Aligner {
@@ -46,6 +48,8 @@ struct AlignerCounters {
   long verified = 0;             ///< Alignments accepted by matching + verification.
   long prior_refined = 0;        ///< Found by refinement from the prediction.
   long prior_searches = 0;       ///< Correlative searches around the prediction.
+  long wide_searches = 0;        ///< ... of them second, wide searches (the first found nothing).
+  long wide_found = 0;           ///< Alignments found by a wide search (refined and verified).
   long prior_ridges = 0;         ///< ... of them accepted as ridges (refined and verified).
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
 };

@@ -56,7 +56,10 @@ struct MapperStats {
   long prior_refined = 0;  ///< Of which: found by refinement from the prediction (no features).
   long online_full_optimizations = 0;  ///< After closures correcting beyond the gate floor.
   long prior_searches = 0;  ///< Correlative searches around the prediction (prior_search.hpp).
-  long prior_ridges = 0;    ///< Of which: aligned as ridges (position along a line unmeasured).
+  /// ... of them second, wide searches (the first found nothing), and the alignments they found.
+  long prior_wide_searches = 0;
+  long prior_wide_found = 0;
+  long prior_ridges = 0;  ///< Of which: aligned as ridges (position along a line unmeasured).
   /// Waiting appearance matches inside one map confirmed by the key maps around them
   /// (JoinVerifier, loop_verification_travel): loops closed beyond the prior search's reach.
   long verified_loops = 0;
