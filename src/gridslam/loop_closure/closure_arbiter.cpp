@@ -152,10 +152,12 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
   // form with the graph close), the estimate is what was wrong, and they are accepted together
   // (docs/design.md §1.6: pairwise consistency of several closures).
   // Matches of one key map are one piece of evidence (its scans): each counts once.
+  const auto consistent = [&](const Match& a, const Match& b) {
+    return Within(LoopError(a, b, graph), options_.pairwise_xy, options_.pairwise_theta);
+  };
   std::vector<int> evidence = {match.k};
   for (const Match& g : gated_) {
-    if (g.k != match.k && match.k - g.k <= options_.gated_window &&
-        Within(LoopError(match, g, graph), options_.pairwise_xy, options_.pairwise_theta)) {
+    if (g.k != match.k && match.k - g.k <= options_.gated_window && consistent(match, g)) {
       decision.accepted.push_back(g);
       if (std::find(evidence.begin(), evidence.end(), g.k) == evidence.end()) {
         evidence.push_back(g.k);
@@ -163,7 +165,16 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
     }
   }
   const std::vector<Match>& group = decision.accepted;
-  if (static_cast<int>(evidence.size()) < options_.min_consistent_gated ||
+  // Every two members must agree, not only each with the new match: a ridge (its position along
+  // a corridor unmeasured) agrees with closures anywhere along it, which may be a place and its
+  // look-alike. Evidence for two places is no evidence: the group waits.
+  bool mutual = true;
+  for (std::size_t a = 1; a < group.size() && mutual; ++a) {
+    for (std::size_t b = a + 1; b < group.size() && mutual; ++b) {
+      mutual = consistent(group[a], group[b]);
+    }
+  }
+  if (static_cast<int>(evidence.size()) < options_.min_consistent_gated || !mutual ||
       !IndependentEnough(group, graph)) {
     decision.verdict = Verdict::kWait;
     decision.accepted.resize(1);

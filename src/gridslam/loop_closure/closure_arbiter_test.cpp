@@ -255,6 +255,31 @@ TEST(ClosureArbiter, ARidgeIsJudgedWithoutItsFreeAxis) {
   EXPECT_LT(LoopError(a, crossing, line.graph).translation().norm(), 1e-12);
 }
 
+// A ridge agrees with closures anywhere along its line; two of them 4 m apart along it do not
+// agree with each other: evidence for two places, the ridge's group waits.
+TEST(ClosureArbiter, AGatedGroupIsMutuallyConsistentNotOnlyWithTheNewMatch) {
+  const Line line(40, 20, Pose2(0.0, 1.0, 0.0));
+  LoopClosureOptions options;
+  options.min_consistent_gated = 3;
+  const Eigen::Vector2d along_x(1.0, 0.0);
+  ClosureArbiter arbiter(options);
+  Match shifted = line.Closure(5, 31);  // a look-alike 4 m along the line
+  shifted.T_i_k = Pose2(4.0, 0.0, 0.0) * shifted.T_i_k;
+  EXPECT_EQ(arbiter.OfferPrior(line.Closure(2, 30), 2.0, true, line.graph).verdict, Verdict::kWait);
+  EXPECT_EQ(arbiter.OfferPrior(shifted, 2.0, true, line.graph).verdict, Verdict::kWait);
+  // The ridge agrees with both, but they disagree: no group of three mutually consistent ones.
+  EXPECT_EQ(
+      arbiter.OfferPrior(Ridge(line.Closure(8, 32), along_x, 1.0), 2.0, true, line.graph).verdict,
+      Verdict::kWait);
+  // A right one that measures the position along the line leaves the look-alike out.
+  const Decision d = arbiter.OfferPrior(line.Closure(9, 33), 2.0, true, line.graph);
+  ASSERT_EQ(d.verdict, Verdict::kAcceptGroup);
+  EXPECT_EQ(d.accepted.size(), 3U);
+  for (const Match& m : d.accepted) {
+    EXPECT_NE(m.k, 31);
+  }
+}
+
 TEST(ClosureArbiter, ReversingARidgeRotatesItsAxis) {
   const Match match{3, 7, Pose2(2.0, 1.0, M_PI / 2.0), Eigen::Vector2d(1.0, 0.0)};
   const Match reversed = Reversed(match);
