@@ -128,11 +128,19 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
       const loop_closure::PriorSearchResult found =
           loop_closure::SearchAroundPrior(geometry_b.obstacle_points, geometry_a.distance, T_i_k,
                                           half_window, window_theta, search);
-      GRIDSLAM_LOG_DEBUG(
-          "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
-          "poses scored, {}",
-          i, k, half_window, window_theta, found.score, found.rival, found.scored, found.poses,
-          found.ok ? "ok" : "refused");
+      if (found.score < search.min_score) {
+        GRIDSLAM_LOG_DEBUG(
+            "prior search {}-{}: window {:.2f} m {:.2f} rad, no pose scores min_score {:.2f}, {} "
+            "of "
+            "{} poses scored, refused",
+            i, k, half_window, window_theta, search.min_score, found.scored, found.poses);
+      } else {
+        GRIDSLAM_LOG_DEBUG(
+            "prior search {}-{}: window {:.2f} m {:.2f} rad, score {:.3f}, rival {:.3f}, {} of {} "
+            "poses scored, {}",
+            i, k, half_window, window_theta, found.score, found.rival, found.scored, found.poses,
+            found.ok ? "ok" : "refused");
+      }
       return found;
     };
     loop_closure::PriorSearchResult found = run(window);
