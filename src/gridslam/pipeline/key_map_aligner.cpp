@@ -130,9 +130,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
                                           half_window, window_theta, search);
       if (found.score < search.min_score) {
         GRIDSLAM_LOG_DEBUG(
-            "prior search {}-{}: window {:.2f} m {:.2f} rad, no pose scores min_score {:.2f}, {} "
-            "of "
-            "{} poses scored, refused",
+            "prior search {}-{}: window {:.2f} m {:.2f} rad, no pose reaches min_score {:.2f}, "
+            "{} of {} poses scored, refused",
             i, k, half_window, window_theta, search.min_score, found.scored, found.poses);
       } else {
         GRIDSLAM_LOG_DEBUG(
@@ -151,7 +150,7 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     if (!found.ok && wide_window > window + search.linear_step) {
       found = run(wide_window);
       wide = found.ok;
-      ++counters_.wide_searches;
+      ++counters_.prior_wide_searches;
     }
     if (!found.ok) {
       return std::nullopt;
@@ -198,7 +197,7 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   }
   ++counters_.prior_refined;
   counters_.prior_ridges += free_axis.has_value() ? 1 : 0;
-  counters_.wide_found += wide ? 1 : 0;
+  counters_.prior_wide_found += wide ? 1 : 0;
   return Alignment{refined.T_a_b, searched, free_axis, free_sigma, wide};
 }
 

@@ -45,11 +45,13 @@ class Aligner {
 
 /// What FeatureAligner counted.
 struct AlignerCounters {
-  long verified = 0;             ///< Alignments accepted by matching + verification.
-  long prior_refined = 0;        ///< Found by refinement from the prediction.
-  long prior_searches = 0;       ///< Correlative searches around the prediction.
-  long wide_searches = 0;        ///< ... of them second, wide searches (the first found nothing).
-  long wide_found = 0;           ///< Alignments found by a wide search (refined and verified).
+  long verified = 0;        ///< Alignments accepted by matching + verification.
+  long prior_refined = 0;   ///< Found by refinement from the prediction.
+  long prior_searches = 0;  ///< Correlative searches around the prediction.
+  /// ... of them second, wide searches (the first found nothing), and the alignments they found
+  /// (refined and verified).
+  long prior_wide_searches = 0;
+  long prior_wide_found = 0;
   long prior_ridges = 0;         ///< ... of them accepted as ridges (refined and verified).
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
 };

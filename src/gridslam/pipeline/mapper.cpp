@@ -255,8 +255,8 @@ void Mapper::Impl::SyncStats() {
   stats.verified = counters.verified;
   stats.prior_refined = counters.prior_refined;
   stats.prior_searches = counters.prior_searches;
-  stats.prior_wide_searches = counters.wide_searches;
-  stats.prior_wide_found = counters.wide_found;
+  stats.prior_wide_searches = counters.prior_wide_searches;
+  stats.prior_wide_found = counters.prior_wide_found;
   stats.prior_ridges = counters.prior_ridges;
   stats.geometry_recomputed = counters.geometry_recomputed;
   stats.accepted = graph.loop_edges_added();
