@@ -31,6 +31,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
          s.candidates + s.appearance_candidates + s.verification_alignments - s.verified},
         {"pruned", s.pruned}}},
       {"joins", s.joins},
+      {"joins_refused_free_space", s.joins_refused_free_space},
       {"odometry",
        {{"doubtful", s.odometry_doubtful},
         {"overruled", s.odometry_overruled},

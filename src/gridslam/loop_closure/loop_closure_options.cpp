@@ -35,6 +35,7 @@ Status LoopClosureOptions::Validate() const {
       Require(loop_verification_travel >= 0.0, "loop_closure.loop_verification_travel >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(prune_chi2 > 0.0, "loop_closure.prune_chi2 > 0"));
   GRIDSLAM_RETURN_IF_ERROR(prior_search.Validate());
+  GRIDSLAM_RETURN_IF_ERROR(free_space_check.Validate());
   return refinement.Validate();
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gridslam/common/options.hpp"
+#include "gridslam/loop_closure/free_space_check.hpp"
 #include "gridslam/loop_closure/grid_refinement.hpp"
 #include "gridslam/loop_closure/prior_search.hpp"
 
@@ -73,11 +74,11 @@ struct LoopClosureOptions {
   int catch_up_rounds = 2;
   /// A lone verified match between two components (no independent second one) is verified by
   /// aligning the newer robot's key maps within this path distance of it under the relative
-  /// frame it implies (pipeline/join_verifier.hpp); 0 = never [m]. Off by default: it joins the
-  /// robots of a building they cross only once (fr-clinic in 3 robots), but in a symmetric one
-  /// (the simulated office) a rotated look-alike verifies as well as the truth
-  /// (docs/multi_robot.md, "A join from one meeting place").
-  double join_verification_travel = 0.0;
+  /// frame it implies (pipeline/join_verifier.hpp); 0 = never [m]. It joins the robots of a
+  /// building they cross only once (fr-clinic in 3 robots). In a symmetric building (the
+  /// simulated office) a rotated look-alike verifies as well as the truth; the free-space check
+  /// (free_space_check) refuses it (docs/multi_robot.md, "Round 16").
+  double join_verification_travel = 20.0;
   /// The same verification inside one map: an appearance match that disagrees with the estimate
   /// (a loop whose drift outgrew the prior search) and has no independent support waits; it is
   /// verified at once by aligning the key maps within this path distance of its newer key map,
@@ -99,6 +100,9 @@ struct LoopClosureOptions {
   double prior_min_constraint = 0.1;
   RefinementOptions refinement;
   PriorSearchOptions prior_search;
+  /// A join (of either kind) whose alignments contradict free space beyond the robots' own
+  /// contradiction is refused (free_space_check.hpp).
+  FreeSpaceCheckOptions free_space_check;
 
   template <class V>
   void Visit(V& v) {
@@ -157,6 +161,8 @@ struct LoopClosureOptions {
     v.Section("refinement", refinement, "Refinement of alignments on the distance field");
     v.Section("prior_search", prior_search,
               "Correlative search around the prediction seeding the prior refinement");
+    v.Section("free_space_check", free_space_check,
+              "Joins checked against the free space each robot observed");
   }
   [[nodiscard]] Status Validate() const;
 };

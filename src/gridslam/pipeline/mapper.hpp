@@ -67,6 +67,9 @@ struct MapperStats {
   long rejected_gate = 0;
   long pruned = 0;
   long joins = 0;
+  /// Joins refused because their alignments put walls in free space far more often than the
+  /// robots contradict themselves (loop_closure/free_space_check.hpp).
+  long joins_refused_free_space = 0;
   long odometry_doubtful = 0;   ///< Front-end frames whose odometry increment was implausible.
   long odometry_overruled = 0;  ///< ... of which the scan match replaced the increment.
   long odometry_missing = 0;    ///< Frames without odometry (scan matching alone).

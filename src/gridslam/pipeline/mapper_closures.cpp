@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "gridslam/common/logging.hpp"
+#include "gridslam/pipeline/join_free_space.hpp"
 #include "gridslam/pipeline/mapper_internal.hpp"
 
 namespace gridslam::pipeline {
@@ -137,6 +138,9 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
         stats.verification_alignments += verified.alignments;
         group = verified.matches;
       }
+      if (!group.empty() && !FreeSpaceAllowsJoin(group)) {
+        group.clear();
+      }
       if (!group.empty()) {
         const ComponentJoiner::Result joined = joiner.Join(group, now, graph, arbiter, aligner);
         joins.push_back(joined.join);
@@ -146,6 +150,20 @@ bool Mapper::Impl::SearchAppearance(int k, const std::vector<int>& prior_tried) 
     }
   }
   return changed;
+}
+
+bool Mapper::Impl::FreeSpaceAllowsJoin(const std::vector<Match>& group) {
+  const loop_closure::FreeSpaceVerdict verdict =
+      CheckJoinFreeSpace(group, graph, options.loop_closure.free_space_check);
+  GRIDSLAM_LOG_DEBUG(
+      "join {}-{} ({} matches): its alignments contradict free space at {:.4f} (median), the "
+      "robots themselves at {:.4f}{}",
+      group.front().i, group.front().k, group.size(), verdict.alignments, verdict.baseline,
+      verdict.refused ? ": refused" : "");
+  if (verdict.refused) {
+    ++stats.joins_refused_free_space;
+  }
+  return !verdict.refused;
 }
 
 bool Mapper::Impl::OfferWithinMap(const Match& match, double uncertainty_distance) {

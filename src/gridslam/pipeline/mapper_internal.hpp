@@ -125,6 +125,8 @@ struct Mapper::Impl {
   bool OfferWithinMap(const loop_closure::Match& match, double uncertainty_distance);
   /// Verifies loop_hypothesis (JoinVerifier); adds its loop edges and optimizes when confirmed.
   bool VerifyLoopHypothesis();
+  /// The free-space check of a join (join_free_space.hpp); counts and logs a refusal.
+  bool FreeSpaceAllowsJoin(const std::vector<loop_closure::Match>& group);
   /// Once key map k (of the hypothesis's robot) is in the graph: verifies the pending
   /// hypothesis again while k lies within loop_verification_travel after it, drops it beyond.
   void RetryLoopHypothesis(int k);
