@@ -80,16 +80,61 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
       }
     }
   }
-  const int robot = graph.Robot(hypothesis.k);
-  // The newer component's frame in the older one's, as the hypothesis says.
-  const Pose2 T_a_b =
-      graph.Estimate(hypothesis.i) * hypothesis.T_i_k * graph.Estimate(hypothesis.k).Inverse();
-  std::vector<Match> support;
-  std::vector<int> covered = {hypothesis.k};
-  bool independent = false;
+  Support support = Gather(hypothesis, hypothesis, graph, aligner, &result.alignments);
+  GRIDSLAM_LOG_DEBUG("{} hypothesis {}-{}: {} alignments, {} agree ({} key maps{})", kind,
+                     hypothesis.i, hypothesis.k, result.alignments, support.matches.size(),
+                     support.covered, support.independent ? ", one independent" : "");
+  if (!Confirms(support)) {
+    return result;
+  }
+  // Inside one map the hypothesis competes with the map as it stands: the same key maps aligned
+  // where the current estimate places them. In a corridor of identical bays both agree with
+  // their alignments (the features and the refinement find whichever copy the prior is nearest);
+  // a real drift leaves the current estimate without support. When the uncorrected map passes
+  // the same test, the revisit does not tell the two apart, and the correction is refused.
+  if (loop) {
+    const Match as_is{hypothesis.i, hypothesis.k,
+                      Between(graph.Estimate(hypothesis.i), graph.Estimate(hypothesis.k))};
+    const long before = result.alignments;
+    const Support rival = Gather(as_is, hypothesis, graph, aligner, &result.alignments);
+    GRIDSLAM_LOG_DEBUG(
+        "loop hypothesis {}-{} against the map as it stands: {} alignments, {} agree "
+        "({} key maps{})",
+        hypothesis.i, hypothesis.k, result.alignments - before, rival.matches.size(), rival.covered,
+        rival.independent ? ", one independent" : "");
+    if (Confirms(rival)) {
+      GRIDSLAM_LOG_DEBUG(
+          "loop hypothesis {}-{}: refused, the map as it stands explains the revisit as well ({} "
+          "key maps agree with it)",
+          hypothesis.i, hypothesis.k, rival.covered);
+      return result;
+    }
+  }
+  result.matches.push_back(hypothesis);
+  result.matches.insert(result.matches.end(), support.matches.begin(), support.matches.end());
+  return result;
+}
+
+bool JoinVerifier::Confirms(const Support& support) const {
+  return support.covered >= options_.min_consistent_gated && support.independent;
+}
+
+JoinVerifier::Support JoinVerifier::Gather(const Match& claim, const Match& other,
+                                           const KeyMapGraph& graph, Aligner& aligner,
+                                           long* alignments) const {
+  const int older = graph.Component(claim.i);
+  const bool loop = older == graph.Component(claim.k);
+  const double travel =
+      loop ? options_.loop_verification_travel : options_.join_verification_travel;
+  const int robot = graph.Robot(claim.k);
+  // The newer component's frame in the older one's, as the claim says.
+  const Pose2 T_a_b = graph.Estimate(claim.i) * claim.T_i_k * graph.Estimate(claim.k).Inverse();
+  const bool distinct = !loop_closure::PairConsistent(claim, other, graph, options_);
+  Support support;
+  std::vector<int> covered = {claim.k};
   for (const KeyMapNode& b : graph.nodes()) {
-    const double along = std::abs(b.travel - graph.Travel(hypothesis.k));
-    if (b.robot != robot || b.id == hypothesis.k || !b.alignable || along > travel) {
+    const double along = std::abs(b.travel - graph.Travel(claim.k));
+    if (b.robot != robot || b.id == claim.k || !b.alignable || along > travel) {
       continue;
     }
     const Pose2 predicted = T_a_b * graph.Estimate(b.id);  // b in the older component's frame
@@ -99,36 +144,31 @@ JoinVerifier::Result JoinVerifier::Verify(const Match& hypothesis,
       const Pose2 prior = Between(graph.Estimate(a), predicted);
       // The prediction is as uncertain as the two paths from the matched key maps (another
       // robot of the older component: as far as the search reaches).
-      const double uncertainty =
-          along + (graph.Robot(a) == graph.Robot(hypothesis.i)
-                       ? std::abs(graph.Travel(a) - graph.Travel(hypothesis.i))
-                       : options_.max_search_radius);
-      ++result.alignments;
+      const double uncertainty = along + (graph.Robot(a) == graph.Robot(claim.i)
+                                              ? std::abs(graph.Travel(a) - graph.Travel(claim.i))
+                                              : options_.max_search_radius);
+      ++*alignments;
       const std::optional<Alignment> measured = aligner.Align(a, b.id, &prior, uncertainty);
       if (!measured.has_value() || measured->free_axis.has_value()) {
         continue;
       }
       const Match found{a, b.id, measured->T_i_k};
-      if (!loop_closure::PairConsistent(hypothesis, found, graph, options_)) {
+      // An alignment that agrees with both claims supports neither against the other.
+      if (!loop_closure::PairConsistent(claim, found, graph, options_) ||
+          (distinct && loop_closure::PairConsistent(other, found, graph, options_))) {
         continue;
       }
-      support.push_back(found);
+      support.matches.push_back(found);
       if (std::find(covered.begin(), covered.end(), b.id) == covered.end()) {
         covered.push_back(b.id);
       }
-      independent = independent || loop_closure::Independent(hypothesis, found, graph,
-                                                             options_.independent_travel);
+      support.independent =
+          support.independent ||
+          loop_closure::Independent(claim, found, graph, options_.independent_travel);
     }
   }
-  GRIDSLAM_LOG_DEBUG("{} hypothesis {}-{}: {} alignments, {} agree ({} key maps{})", kind,
-                     hypothesis.i, hypothesis.k, result.alignments, support.size(), covered.size(),
-                     independent ? ", one independent" : "");
-  if (static_cast<int>(covered.size()) < options_.min_consistent_gated || !independent) {
-    return result;
-  }
-  result.matches.push_back(hypothesis);
-  result.matches.insert(result.matches.end(), support.begin(), support.end());
-  return result;
+  support.covered = static_cast<int>(covered.size());
+  return support;
 }
 
 }  // namespace gridslam::pipeline

@@ -17,7 +17,10 @@
 // independent one. The key maps within that travel of the match's newer one are aligned with the
 // old pass's key maps the correction predicts them beside (never with key maps within
 // min_travel_gap of them along the path: the path just driven); only waiting matches of the same
-// revisit can contradict. The mapper retries a hypothesis as the next key maps arrive.
+// revisit can contradict. The mapper retries a hypothesis as the next key maps arrive. A loop
+// hypothesis must also beat the map as it stands: the same test run on the uncorrected estimate
+// (the key maps aligned where the map now places them) must fail. In a corridor of identical bays
+// both pass, and a correction the revisit cannot tell from no correction is refused.
 // Contract: reads the graph, asks the aligner; writes nothing.
 #pragma once
 
@@ -50,6 +53,19 @@ class JoinVerifier {
                               const KeyMapGraph& graph, Aligner& aligner) const;
 
  private:
+  /// Alignments agreeing with a claim of where the newer key maps lie.
+  struct Support {
+    std::vector<loop_closure::Match> matches;
+    int covered = 0;           ///< Distinct newer key maps they cover, the claim's own included.
+    bool independent = false;  ///< One is independent of the claim (independent_travel).
+  };
+  /// The key maps within the verification travel of claim.k, aligned with the older component's
+  /// key maps the claim predicts them beside; those that agree with the claim and, when `other`
+  /// is a different claim, not with it too.
+  Support Gather(const loop_closure::Match& claim, const loop_closure::Match& other,
+                 const KeyMapGraph& graph, Aligner& aligner, long* alignments) const;
+  [[nodiscard]] bool Confirms(const Support& support) const;
+
   loop_closure::LoopClosureOptions options_;
 };
 

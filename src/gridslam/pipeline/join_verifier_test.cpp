@@ -4,6 +4,10 @@
 // loop met by one appearance match beyond the prior search's reach.
 #include "gridslam/pipeline/join_verifier.hpp"
 
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "gridslam/pipeline/two_robot_corridor_testing.hpp"
@@ -116,8 +120,7 @@ TEST(JoinVerifier, NeedsAnAgreeingKeyMapIndependentOfTheMatch) {
 struct Loop {
   KeyMapGraph graph{1, {}};
   std::vector<Pose2> truth;
-  Loop() {
-    const Pose2 drift(6.0, -2.0, 0.1);
+  explicit Loop(const Pose2& drift = Pose2(6.0, -2.0, 0.1)) {
     for (int pass = 0; pass < 2; ++pass) {
       for (int v = 0; v < 15; ++v) {
         truth.emplace_back(2.0 * v, pass, 0.0);
@@ -192,6 +195,66 @@ TEST(JoinVerifier, ConfirmsALoopInsideOneMapWithTheKeyMapsAroundIt) {
   EXPECT_TRUE(
       JoinVerifier(off).Verify(loop.Closure(10, 25), {}, loop.graph, aligner).matches.empty());
   EXPECT_EQ(aligner.calls, 0);
+}
+
+// A corridor of identical bays `period` apart along x: the features and the refinement find the
+// copy of the true pose nearest the prior (any copy when there is none), if it overlaps.
+class BaysAligner : public Aligner {
+ public:
+  BaysAligner(std::vector<Pose2> truth, double range, double period)
+      : truth_(std::move(truth)), range_(range), period_(period) {}
+  std::optional<Alignment> Align(int i, int k, const Pose2* prior, double) override {
+    const Pose2 T =
+        Between(truth_[static_cast<std::size_t>(i)], truth_[static_cast<std::size_t>(k)]);
+    const double shift =
+        prior == nullptr ? 0.0 : period_ * std::round((prior->x() - T.x()) / period_);
+    const Pose2 copy(T.x() + shift, T.y(), T.theta());
+    if (copy.translation().norm() > range_) {
+      return std::nullopt;
+    }
+    return Alignment{copy, false};
+  }
+
+ private:
+  std::vector<Pose2> truth_;
+  double range_;
+  double period_;
+};
+
+TEST(JoinVerifier, RefusesALoopTheUncorrectedMapExplainsAsWell) {
+  const loop_closure::LoopClosureOptions options;
+  const JoinVerifier verifier(options);
+  // The second pass's estimate is right; the appearance match is the next bay, 4 m along.
+  const Loop right_map(Pose2(0.0, 0.0, 0.0));
+  BaysAligner bays(right_map.truth, 5.0, 4.0);
+  Match next_bay = right_map.Closure(10, 25);
+  next_bay.T_i_k = Pose2(next_bay.T_i_k.x() - 4.0, next_bay.T_i_k.y(), next_bay.T_i_k.theta());
+  // Aligned where the hypothesis places them, the key maps around it agree with it (the bays
+  // look alike) ...
+  const JoinVerifier::Result refused = verifier.Verify(next_bay, {}, right_map.graph, bays);
+  EXPECT_TRUE(refused.matches.empty());
+  // ... and as the map places them, they agree with it too: refused. The aligner was asked
+  // about both (more alignments than the hypothesis's own).
+  long hypothesis_only = 0;
+  {
+    loop_closure::LoopClosureOptions without_rival = options;
+    without_rival.min_consistent_gated = 1000;  // fails on its own support: no rival tried
+    BaysAligner counting(right_map.truth, 5.0, 4.0);
+    hypothesis_only =
+        JoinVerifier(without_rival).Verify(next_bay, {}, right_map.graph, counting).alignments;
+  }
+  EXPECT_GT(refused.alignments, hypothesis_only);
+
+  // A real drift (6 m, 0.1 rad): the uncorrected map's alignments find a bay, but not where the
+  // map places the key maps (off across the corridor and in heading): the loop is confirmed.
+  const Loop drifted;
+  BaysAligner drifted_bays(drifted.truth, 5.0, 4.0);
+  const JoinVerifier::Result confirmed =
+      verifier.Verify(drifted.Closure(10, 25), {}, drifted.graph, drifted_bays);
+  ASSERT_FALSE(confirmed.matches.empty());
+  for (const Match& m : confirmed.matches) {
+    EXPECT_TRUE(IsApprox(m.T_i_k, drifted.Closure(m.i, m.k).T_i_k, 1e-9, 1e-9));
+  }
 }
 
 }  // namespace
