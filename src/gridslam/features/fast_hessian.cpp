@@ -165,8 +165,13 @@ std::vector<cv::KeyPoint> DetectFastHessian(const IntegralImage& integral,
   }
   const int n = options.layers_per_octave;
   const auto threshold = static_cast<float>(options.hessian_threshold);
-  Layers layers(static_cast<std::size_t>(n));
-  Layers previous(static_cast<std::size_t>(n));
+  // The layers' buffers (several hundred kB each on a key map) are kept per thread from call to
+  // call: allocated afresh, every call paid the kernel's page faults for them again. Every value
+  // read is written first in the same call (the valid ranges), so nothing leaks between calls.
+  thread_local Layers layers;
+  thread_local Layers previous;
+  layers.resize(static_cast<std::size_t>(n));
+  previous.resize(static_cast<std::size_t>(n));
   for (int o = 0; o < options.num_octaves; ++o) {
     const int step = options.initial_step << o;
     std::swap(layers, previous);

@@ -53,7 +53,10 @@ void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     }
     return;
   }
-  const IntegralImage integral(img);
+  // Kept per thread from call to call: a key map's table is a few MB, and allocated afresh every
+  // call paid the kernel's page faults for it again. Compute() rewrites every entry.
+  thread_local IntegralImage integral;
+  integral.Compute(img);
   if (use_provided_keypoints) {
     std::erase_if(keypoints,
                   [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
@@ -76,7 +79,10 @@ void SurfFeature2D::DetectThenDescribe(const cv::Mat& img, std::vector<cv::KeyPo
     return;
   }
   // detect(): detection and orientation; compute(): keypoints inside the image, descriptors.
-  const IntegralImage integral(img);
+  // Kept per thread from call to call: a key map's table is a few MB, and allocated afresh every
+  // call paid the kernel's page faults for it again. Compute() rewrites every entry.
+  thread_local IntegralImage integral;
+  integral.Compute(img);
   Detect(integral, cv::Mat(), keypoints);
   Orient(integral, false, keypoints);
   std::erase_if(keypoints, [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });

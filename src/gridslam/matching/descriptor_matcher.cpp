@@ -2,68 +2,17 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 
-#include <Eigen/Core>
-
 #include "gridslam/common/check.hpp"
+#include "gridslam/matching/descriptor_distances.hpp"
 
 namespace gridslam::matching {
 namespace {
 
-using RowMajorMatrixXf = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kMaxK = 17;  // cross_check_k <= 16, plus one for the ratio test
-
-// Squared Euclidean distances of float descriptors: |a|² + |b|² - 2 a·b, one GEMM.
-RowMajorMatrixXf SquaredEuclidean(const cv::Mat& a, const cv::Mat& b) {
-  const cv::Mat ac = a.isContinuous() ? a : a.clone();
-  const cv::Mat bc = b.isContinuous() ? b : b.clone();
-  const Eigen::Map<const RowMajorMatrixXf> ma(ac.ptr<float>(), ac.rows, ac.cols);
-  const Eigen::Map<const RowMajorMatrixXf> mb(bc.ptr<float>(), bc.rows, bc.cols);
-  RowMajorMatrixXf d = -2.0F * (ma * mb.transpose());
-  const Eigen::VectorXf na = ma.rowwise().squaredNorm();
-  const Eigen::RowVectorXf nb = mb.rowwise().squaredNorm().transpose();
-  d.colwise() += na;
-  d.rowwise() += nb;
-  return d.cwiseMax(0.0F);
-}
-
-// Hamming distances of binary descriptors, 8 bytes at a time. On x86-64 with GCC a clone using
-// the POPCNT instruction is chosen at load time (the baseline ISA has none).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("popcnt", "default")))
-#endif
-RowMajorMatrixXf
-Hamming(const cv::Mat& a, const cv::Mat& b) {
-  const int bytes = a.cols;
-  const int words = bytes / 8;
-  RowMajorMatrixXf d(a.rows, b.rows);
-  for (int i = 0; i < a.rows; ++i) {
-    const std::uint8_t* pa = a.ptr<std::uint8_t>(i);
-    for (int j = 0; j < b.rows; ++j) {
-      const std::uint8_t* pb = b.ptr<std::uint8_t>(j);
-      int bits = 0;
-      for (int w = 0; w < words; ++w) {
-        std::uint64_t x = 0;
-        std::uint64_t y = 0;
-        std::memcpy(&x, pa + 8 * w, 8);
-        std::memcpy(&y, pb + 8 * w, 8);
-        bits += std::popcount(x ^ y);
-      }
-      for (int c = 8 * words; c < bytes; ++c) {
-        bits += std::popcount(static_cast<unsigned>(pa[c] ^ pb[c]));
-      }
-      d(i, j) = static_cast<float>(bits);
-    }
-  }
-  return d;
-}
 
 // The `k` smallest entries (indices, ascending distance, ties to the lower index) of a row or
 // column; missing entries are -1.
@@ -107,8 +56,8 @@ std::vector<Match> MatchDescriptors(const FeatureSet& a, const FeatureSet& b,
                  a.descriptors.cols == b.descriptors.cols)
       << "descriptor types or lengths differ";
   const bool binary = a.descriptors.depth() == CV_8U;
-  RowMajorMatrixXf d = binary ? Hamming(a.descriptors, b.descriptors)
-                              : SquaredEuclidean(a.descriptors, b.descriptors);
+  RowMajorMatrixXf d = binary ? HammingDistances(a.descriptors, b.descriptors)
+                              : SquaredEuclideanDistances(a.descriptors, b.descriptors);
   const int na = a.size();
   const int nb = b.size();
 
