@@ -22,6 +22,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"prior_wide_searches", s.prior_wide_searches},
         {"found_by_prior_wide_search", s.prior_wide_found},
         {"prior_ridges", s.prior_ridges},
+        {"prior_weak_by_search", s.prior_weak_by_search},
         {"verified_loops", s.verified_loops},
         {"key_map_fields_recomputed", s.geometry_recomputed},
         {"online_full_optimizations", s.online_full_optimizations},

@@ -45,6 +45,10 @@ Match Reversed(const Match& match) {
     reversed.free_axis = match.T_i_k.Rotation().transpose() * *match.free_axis;
     reversed.free_sigma = match.free_sigma;
   }
+  if (match.weak_axis.has_value()) {
+    reversed.weak_axis = match.T_i_k.Rotation().transpose() * *match.weak_axis;
+    reversed.weak_sigma = match.weak_sigma;
+  }
   return reversed;
 }
 

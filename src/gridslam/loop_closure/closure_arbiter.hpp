@@ -50,6 +50,12 @@ struct Match {
   /// Found by the prior search's second, wide window (prior_search.hpp wide_window_per_m): a
   /// group that holds it is accepted only with two independent matches in it.
   bool wide_search = false;
+  /// Set when the refinement constrained one direction poorly (a corridor) and the search's
+  /// distinct peak placed the translation along it: that direction (unit, in i's frame), known
+  /// only to weak_sigma [m]. The checks treat it as measured; only the edge's information is
+  /// lower along it.
+  std::optional<Eigen::Vector2d> weak_axis = std::nullopt;
+  double weak_sigma = 0.0;
 };
 
 /// The match seen from the other side: i's pose in k's frame (the free axis rotated with it).

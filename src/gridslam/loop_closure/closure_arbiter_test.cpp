@@ -291,6 +291,31 @@ TEST(ClosureArbiter, ReversingARidgeRotatesItsAxis) {
   EXPECT_FALSE(Reversed(Match{3, 7, Pose2(2.0, 1.0, 0.3)}).free_axis.has_value());
 }
 
+TEST(ClosureArbiter, ReversingAWeakMatchRotatesItsWeakAxis) {
+  Match match{3, 7, Pose2(2.0, 1.0, M_PI / 2.0)};
+  match.weak_axis = Eigen::Vector2d(1.0, 0.0);
+  match.weak_sigma = 0.1;
+  const Match reversed = Reversed(match);
+  ASSERT_TRUE(reversed.weak_axis.has_value());
+  EXPECT_TRUE(reversed.weak_axis->isApprox(Eigen::Vector2d(0.0, -1.0), 1e-12));
+  EXPECT_EQ(reversed.weak_sigma, 0.1);
+  EXPECT_FALSE(reversed.free_axis.has_value());
+}
+
+// A weak axis is measured: unlike a ridge's free axis, an offset along it counts in the checks.
+TEST(ClosureArbiter, AnOffsetAlongAWeakAxisCountsInTheChecks) {
+  Match weak{3, 7, Pose2(2.0, 1.0, 0.0)};
+  weak.weak_axis = Eigen::Vector2d(1.0, 0.0);
+  weak.weak_sigma = 0.1;
+  Match ridge{3, 7, Pose2(2.0, 1.0, 0.0), Eigen::Vector2d(1.0, 0.0), 0.1};
+  const Line line(10, 1000, Pose2());
+  const Pose2 shift(1.5, 0.0, 0.0);  // along the axis
+  weak.T_i_k = Between(line.graph.Estimate(3), line.graph.Estimate(7)) * shift;
+  ridge.T_i_k = weak.T_i_k;
+  EXPECT_NEAR(ClosureError(weak, line.graph).translation().norm(), 1.5, 1e-9);
+  EXPECT_NEAR(ClosureError(ridge, line.graph).translation().norm(), 0.0, 1e-9);
+}
+
 // Ridges found by the search along one straight stretch, each at another position along it,
 // correct the heading and the offset across it as a group.
 TEST(ClosureArbiter, AcceptsAConsistentGroupOfRidges) {

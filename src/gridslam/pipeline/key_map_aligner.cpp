@@ -170,9 +170,12 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
                        refined.inlier_fraction);
     return std::nullopt;
   }
-  // Degenerate geometry (a featureless corridor) constrains some direction poorly: refuse it,
-  // unless the search found it a ridge along that direction; then the direction across the
-  // ridge must be constrained.
+  // Degenerate geometry (a corridor) constrains some direction poorly in the refinement, which
+  // sees only the distance field's local slope. A ridge (the search found the direction flat)
+  // needs the direction across it constrained. When the search found one distinct peak, the
+  // search measured the weak direction, by scoring the whole window (a door, a bay, the end of
+  // the corridor): the position along it is the search's, the rest the refinement's. Without a
+  // search nothing measured it: refused.
   const Eigen::Matrix2d hessian_xy = refined.hessian.topLeftCorner<2, 2>();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(hessian_xy);
   double weakest = eig.eigenvalues()(0);
@@ -180,13 +183,30 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
     const Eigen::Vector2d across(-free_axis->y(), free_axis->x());
     weakest = across.dot(hessian_xy * across);
   }
+  Pose2 T_a_b = refined.T_a_b;
+  std::optional<Eigen::Vector2d> weak_axis;
   if (weakest < options_.prior_min_constraint * eig.eigenvalues()(1)) {
-    GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained{}", i, k,
-                       free_axis.has_value() ? " across the ridge" : "");
-    return std::nullopt;
+    if (!searched || free_axis.has_value()) {
+      GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, poorly constrained{}", i, k,
+                         free_axis.has_value() ? " across the ridge" : "");
+      return std::nullopt;
+    }
+    // The refinement may slide along the weak direction: keep it within the search's step of
+    // the search's peak.
+    const Eigen::Vector2d weak = eig.eigenvectors().col(0);
+    const Eigen::Vector2d t = refined.T_a_b.translation();
+    const double slid = weak.dot(t - start.translation());
+    const double kept = std::clamp(slid, -search.linear_step, search.linear_step);
+    const Eigen::Vector2d moved = weak * (kept - slid);
+    T_a_b = Pose2(t.x() + moved.x(), t.y() + moved.y(), refined.T_a_b.theta());
+    weak_axis = weak;
+    GRIDSLAM_LOG_DEBUG(
+        "prior refinement {}-{}: poorly constrained along ({:.2f}, {:.2f}), slid {:.3f} m from "
+        "the search's peak, kept {:.3f} m",
+        i, k, weak.x(), weak.y(), slid, kept);
   }
   const matching::VerificationResult verified = matching::VerifyAlignment(
-      refined.T_a_b, Verification(geometry_a, geometry_b), matching_.verification);
+      T_a_b, Verification(geometry_a, geometry_b), matching_.verification);
   if (!verified.accepted) {
     GRIDSLAM_LOG_DEBUG(
         "prior refinement {}-{}: not verified, overlap {} ({}), agreement {:.2f}, contradiction "
@@ -198,7 +218,11 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   ++counters_.prior_refined;
   counters_.prior_ridges += free_axis.has_value() ? 1 : 0;
   counters_.prior_wide_found += wide ? 1 : 0;
-  return Alignment{refined.T_a_b, searched, free_axis, free_sigma, wide};
+  counters_.prior_weak_by_search += weak_axis.has_value() ? 1 : 0;
+  // Along the weak direction the translation is known to within the search's step (uniform over
+  // +-linear_step, as kept above).
+  return Alignment{
+      T_a_b, searched, free_axis, free_sigma, wide, weak_axis, search.linear_step / std::sqrt(3.0)};
 }
 
 }  // namespace gridslam::pipeline

@@ -32,6 +32,10 @@ struct Alignment {
   double free_sigma = 0.0;  ///< Standard deviation along free_axis (Match::free_sigma) [m].
   /// Found by the search's second, wide window (the first found nothing; prior_search.hpp).
   bool wide_search = false;
+  /// Poorly constrained by the refinement along this direction (unit, in i's frame), placed by
+  /// the search's distinct peak to within weak_sigma [m] (Match::weak_axis).
+  std::optional<Eigen::Vector2d> weak_axis = std::nullopt;
+  double weak_sigma = 0.0;
 };
 
 class Aligner {
@@ -52,7 +56,10 @@ struct AlignerCounters {
   /// (refined and verified).
   long prior_wide_searches = 0;
   long prior_wide_found = 0;
-  long prior_ridges = 0;         ///< ... of them accepted as ridges (refined and verified).
+  long prior_ridges = 0;  ///< ... of them accepted as ridges (refined and verified).
+  /// ... of them poorly constrained in the refinement, placed along the weak direction by the
+  /// search's distinct peak.
+  long prior_weak_by_search = 0;
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
 };
 

@@ -67,19 +67,25 @@ inline Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) {
 
 /// The information of a loop edge: Information(sigma_xy, sigma_theta), and along a ridge's free
 /// axis only what the search window tells (1 / free_sigma^2), so the edge stays positive definite
-/// but all but free along the axis. The edge's translation error is in the frame of k as measured
+/// but all but free along the axis; along a weak axis (a corridor placed by the search's peak)
+/// what the search's step tells (1 / weak_sigma^2, never more than sigma_xy's). The edge's
+/// translation error is in the frame of k as measured
 /// (g2o's convention, pose_graph/edge_error.hpp), where the axis (given in i's frame) is
 /// R(T_i_k)^T free_axis.
 inline Eigen::Matrix3d LoopInformation(const loop_closure::Match& match, double sigma_xy,
                                        double sigma_theta) {
   Eigen::Matrix3d information = Information(sigma_xy, sigma_theta);
-  if (match.free_axis.has_value()) {
-    GRIDSLAM_CHECK(match.free_sigma > 0.0) << match.free_sigma;
-    const Eigen::Vector2d axis = match.T_i_k.Rotation().transpose() * *match.free_axis;
+  const auto lower_along = [&](const Eigen::Vector2d& axis_in_i, double sigma) {
+    GRIDSLAM_CHECK(sigma > 0.0) << sigma;
+    const Eigen::Vector2d axis = match.T_i_k.Rotation().transpose() * axis_in_i;
     const Eigen::Matrix2d along = axis * axis.transpose();
     information.topLeftCorner<2, 2>() =
-        (Eigen::Matrix2d::Identity() - along) / (sigma_xy * sigma_xy) +
-        along / (match.free_sigma * match.free_sigma);
+        (Eigen::Matrix2d::Identity() - along) / (sigma_xy * sigma_xy) + along / (sigma * sigma);
+  };
+  if (match.free_axis.has_value()) {
+    lower_along(*match.free_axis, match.free_sigma);
+  } else if (match.weak_axis.has_value()) {
+    lower_along(*match.weak_axis, std::max(match.weak_sigma, sigma_xy));  // never more than full
   }
   return information;
 }

@@ -90,6 +90,33 @@ TEST(LoopInformation, ARidgeEdgeCostsNothingAlongItsFreeAxis) {
   EXPECT_EQ(LoopUncertaintyWeight(Match{0, 1, T_i_k}, 0.5), 0.5);
 }
 
+// A weak axis (a corridor placed by the search's peak) lowers the information along it to its
+// sigma (never more information than a full closure's) and keeps it across.
+TEST(LoopInformation, AWeakAxisHasTheSearchsPrecisionAlongIt) {
+  const Eigen::Vector2d axis = Eigen::Vector2d(2.0, -1.0).normalized();  // in i's frame
+  const Pose2 T_i_k(3.0, 1.0, -0.6);
+  Match weak{0, 1, T_i_k};
+  weak.weak_axis = axis;
+  weak.weak_sigma = 0.12;
+  const Eigen::Matrix3d information = LoopInformation(weak, 0.03, 0.005);
+  const Pose2 X_i(-1.0, 0.5, 0.9);
+  const Eigen::Vector3d z(T_i_k.x(), T_i_k.y(), T_i_k.theta());
+  const auto chi2 = [&](const Eigen::Matrix3d& info, const Eigen::Vector2d& offset_in_i) {
+    const Pose2 X_k =
+        X_i * Pose2(T_i_k.x() + offset_in_i.x(), T_i_k.y() + offset_in_i.y(), T_i_k.theta());
+    const Eigen::Vector3d e = pose_graph::EdgeError(Eigen::Vector3d(X_i.x(), X_i.y(), X_i.theta()),
+                                                    Eigen::Vector3d(X_k.x(), X_k.y(), X_k.theta()),
+                                                    z, std::cos(z.z()), std::sin(z.z()));
+    return e.dot(info * e);
+  };
+  EXPECT_NEAR(chi2(information, 0.2 * axis), 0.2 * 0.2 / (0.12 * 0.12), 1e-9);
+  const Eigen::Vector2d across(-axis.y(), axis.x());
+  EXPECT_NEAR(chi2(information, 0.1 * across), 0.1 * 0.1 / (0.03 * 0.03), 1e-6);
+  EXPECT_TRUE(std::isfinite(LoopUncertaintyWeight(weak, 0.5)));
+  weak.weak_sigma = 0.01;  // finer than a full closure: a full closure's information
+  EXPECT_TRUE(LoopInformation(weak, 0.03, 0.005).isApprox(kLoop));
+}
+
 TEST(KeyMapGraph, ChainsEstimatesFromTheFrontEndAndAnchorsEachRobot) {
   KeyMapGraph graph(2, {});
   const std::vector<int> a = AddRobot(graph, 0, {Pose2(1, 2, 0.1), Pose2(2, 2, 0.1)});

@@ -258,6 +258,7 @@ void Mapper::Impl::SyncStats() {
   stats.prior_wide_searches = counters.prior_wide_searches;
   stats.prior_wide_found = counters.prior_wide_found;
   stats.prior_ridges = counters.prior_ridges;
+  stats.prior_weak_by_search = counters.prior_weak_by_search;
   stats.geometry_recomputed = counters.geometry_recomputed;
   stats.accepted = graph.loop_edges_added();
   stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);

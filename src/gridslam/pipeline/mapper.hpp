@@ -60,6 +60,9 @@ struct MapperStats {
   long prior_wide_searches = 0;
   long prior_wide_found = 0;
   long prior_ridges = 0;  ///< Of which: aligned as ridges (position along a line unmeasured).
+  /// Of which: poorly constrained in the refinement, placed along its weak direction by the
+  /// search's distinct peak.
+  long prior_weak_by_search = 0;
   /// Waiting appearance matches inside one map confirmed by the key maps around them
   /// (JoinVerifier, loop_verification_travel): loops closed beyond the prior search's reach.
   long verified_loops = 0;
