@@ -1,14 +1,11 @@
 #include "gridslam/loop_closure/appearance_index.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <map>
 #include <utility>
 
 #include <opencv2/core.hpp>
 #include <opencv2/flann.hpp>
-
-#include "gridslam/matching/descriptor_distances.hpp"
 
 namespace gridslam::loop_closure {
 
@@ -34,44 +31,6 @@ namespace {
 
 bool Indexable(const cv::Mat& descriptors) {
   return !descriptors.empty() && (descriptors.type() == CV_32F || descriptors.type() == CV_8U);
-}
-
-// The `k` nearest rows of `stored` for every row of `query` (ascending, ties to the lower row),
-// by brute force over the distance matrix, a slice of query rows at a time (bounded memory).
-// Binary descriptors: Hamming distances, squared so that the ratio test compares them as it
-// compares squared L2 distances.
-void NearestByBruteForce(const cv::Mat& query, const cv::Mat& stored, bool binary, int k,
-                         cv::Mat* indices, cv::Mat* dists) {
-  constexpr int kSlice = 128;
-  indices->create(query.rows, k, CV_32S);
-  dists->create(query.rows, k, CV_32F);
-  indices->setTo(-1);
-  dists->setTo(std::numeric_limits<float>::infinity());
-  for (int q0 = 0; q0 < query.rows; q0 += kSlice) {
-    const cv::Mat slice = query.rowRange(q0, std::min(query.rows, q0 + kSlice));
-    matching::RowMajorMatrixXf d = binary ? matching::HammingDistances(slice, stored)
-                                          : matching::SquaredEuclideanDistances(slice, stored);
-    if (binary) {
-      d = d.cwiseProduct(d);
-    }
-    for (int r = 0; r < slice.rows; ++r) {
-      int* index = indices->ptr<int>(q0 + r);
-      float* value = dists->ptr<float>(q0 + r);
-      for (int j = 0; j < stored.rows; ++j) {
-        const float v = d(r, j);
-        if (!(v < value[k - 1])) {
-          continue;
-        }
-        int pos = k - 1;
-        for (; pos > 0 && v < value[pos - 1]; --pos) {
-          value[pos] = value[pos - 1];
-          index[pos] = index[pos - 1];
-        }
-        value[pos] = v;
-        index[pos] = j;
-      }
-    }
-  }
 }
 
 }  // namespace
@@ -129,8 +88,16 @@ std::vector<AppearanceVote> AppearanceIndex::Query(const cv::Mat& descriptors, i
     cv::Mat dists;
     if (block->tree != nullptr) {
       block->tree->knnSearch(descriptors, indices, dists, kk, cv::flann::SearchParams(32));
+    } else if (type_ == CV_8U) {
+      // Hamming distances, squared so that the ratio below compares distances as for L2.
+      cv::Mat hamming;
+      cv::batchDistance(descriptors, block->descriptors, hamming, CV_32S, indices, cv::NORM_HAMMING,
+                        kk);
+      hamming.convertTo(dists, CV_32F);
+      dists = dists.mul(dists);
     } else {
-      NearestByBruteForce(descriptors, block->descriptors, type_ == CV_8U, kk, &indices, &dists);
+      cv::batchDistance(descriptors, block->descriptors, dists, CV_32F, indices, cv::NORM_L2SQR,
+                        kk);
     }
     for (int q = 0; q < n; ++q) {
       auto& list = nearest[static_cast<std::size_t>(q)];

@@ -48,25 +48,6 @@ TEST(AppearanceIndex, VotesForTheKeyMapThatLooksAlike) {
   }
 }
 
-// The newest block is searched by brute force a slice of query rows at a time: a query longer
-// than a slice, whose look-alike rows come after the first slice, still votes for its key map.
-TEST(AppearanceIndex, LongQueriesSearchTheNewestBlockInSlices) {
-  std::mt19937 rng(7);
-  AppearanceIndex index(/*block_size=*/1000);  // never sealed: all brute force
-  std::vector<cv::Mat> stored;
-  for (int node = 0; node < 12; ++node) {
-    stored.push_back(RandomDescriptors(rng, 60));
-    index.Add(node, stored.back());
-  }
-  cv::Mat query = RandomDescriptors(rng, 200);
-  cv::Mat alike = stored[5].rowRange(0, 40).clone();
-  alike += RandomDescriptors(rng, 40) * 0.05;
-  query.push_back(alike);
-  query.push_back(RandomDescriptors(rng, 30));
-  ASSERT_GT(query.rows, 256);
-  ExpectVotesFor(index, query, 5);
-}
-
 cv::Mat RandomBits(std::mt19937& rng, int rows) {
   std::uniform_int_distribution<int> byte(0, 255);
   cv::Mat d(rows, 61, CV_8U);  // AKAZE's 486-bit descriptor

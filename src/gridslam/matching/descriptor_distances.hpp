@@ -1,9 +1,9 @@
 // Distance matrices between two sets of descriptors (rows of a cv::Mat), the brute-force core of
-// descriptor association (descriptor_matcher.hpp) and of the appearance index's newest block
-// (loop_closure/appearance_index.hpp). Float descriptors: squared Euclidean distances computed as
-// |a|² + |b|² − 2 a·b, one matrix product (Eigen's blocked GEMM: many times faster than a
-// row-by-row norm for the hundreds × thousands of rows a key map meets), clamped at 0. Binary
-// descriptors: Hamming distances, 64 bits per popcount.
+// descriptor association (descriptor_matcher.hpp). Float descriptors: squared Euclidean distances
+// computed as |a|² + |b|² − 2 a·b, one matrix product, clamped at 0. Binary descriptors: Hamming
+// distances, 64 bits per popcount. (The appearance index's newest block stays with
+// cv::batchDistance: measured against this GEMM on fr079, OpenCV's dispatched, parallel kernel was
+// faster; docs/speed.md, round 17.)
 #pragma once
 
 #include <Eigen/Core>
