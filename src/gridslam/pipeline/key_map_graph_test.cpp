@@ -62,6 +62,19 @@ std::vector<Pose2> Square(double drift_per_key_map) {
   return odom;
 }
 
+// χ² of a loop edge measuring T_i_k with `information`, when k sits at T_i_k moved by
+// `offset_in_i` (in i's frame) from i at X_i.
+double LoopChi2(const Eigen::Matrix3d& information, const Pose2& X_i, const Pose2& T_i_k,
+                const Eigen::Vector2d& offset_in_i) {
+  const Eigen::Vector3d z(T_i_k.x(), T_i_k.y(), T_i_k.theta());
+  const Pose2 X_k =
+      X_i * Pose2(T_i_k.x() + offset_in_i.x(), T_i_k.y() + offset_in_i.y(), T_i_k.theta());
+  const Eigen::Vector3d e = pose_graph::EdgeError(Eigen::Vector3d(X_i.x(), X_i.y(), X_i.theta()),
+                                                  Eigen::Vector3d(X_k.x(), X_k.y(), X_k.theta()), z,
+                                                  std::cos(z.z()), std::sin(z.z()));
+  return e.dot(information * e);
+}
+
 // A ridge's loop edge has only the search window's information along its free axis: moving k
 // along it (in i's frame) costs what a 5 m standard deviation says, moving it across what a full
 // closure costs.
@@ -72,14 +85,8 @@ TEST(LoopInformation, ARidgeEdgeCostsNothingAlongItsFreeAxis) {
   const Eigen::Matrix3d information = LoopInformation(ridge, 0.03, 0.005);
   EXPECT_TRUE(LoopInformation(Match{0, 1, T_i_k}, 0.03, 0.005).isApprox(kLoop));
   const Pose2 X_i(1.0, 2.0, -0.4);
-  const Eigen::Vector3d z(T_i_k.x(), T_i_k.y(), T_i_k.theta());
   const auto chi2 = [&](const Eigen::Vector2d& offset_in_i) {
-    const Pose2 X_k =
-        X_i * Pose2(T_i_k.x() + offset_in_i.x(), T_i_k.y() + offset_in_i.y(), T_i_k.theta());
-    const Eigen::Vector3d e = pose_graph::EdgeError(Eigen::Vector3d(X_i.x(), X_i.y(), X_i.theta()),
-                                                    Eigen::Vector3d(X_k.x(), X_k.y(), X_k.theta()),
-                                                    z, std::cos(z.z()), std::sin(z.z()));
-    return e.dot(information * e);
+    return LoopChi2(information, X_i, T_i_k, offset_in_i);
   };
   EXPECT_NEAR(chi2(Eigen::Vector2d::Zero()), 0.0, 1e-12);
   EXPECT_NEAR(chi2(2.5 * axis), 2.5 * 2.5 / (5.0 * 5.0), 1e-9);
@@ -100,18 +107,9 @@ TEST(LoopInformation, AWeakAxisHasTheSearchsPrecisionAlongIt) {
   weak.weak_sigma = 0.12;
   const Eigen::Matrix3d information = LoopInformation(weak, 0.03, 0.005);
   const Pose2 X_i(-1.0, 0.5, 0.9);
-  const Eigen::Vector3d z(T_i_k.x(), T_i_k.y(), T_i_k.theta());
-  const auto chi2 = [&](const Eigen::Matrix3d& info, const Eigen::Vector2d& offset_in_i) {
-    const Pose2 X_k =
-        X_i * Pose2(T_i_k.x() + offset_in_i.x(), T_i_k.y() + offset_in_i.y(), T_i_k.theta());
-    const Eigen::Vector3d e = pose_graph::EdgeError(Eigen::Vector3d(X_i.x(), X_i.y(), X_i.theta()),
-                                                    Eigen::Vector3d(X_k.x(), X_k.y(), X_k.theta()),
-                                                    z, std::cos(z.z()), std::sin(z.z()));
-    return e.dot(info * e);
-  };
-  EXPECT_NEAR(chi2(information, 0.2 * axis), 0.2 * 0.2 / (0.12 * 0.12), 1e-9);
+  EXPECT_NEAR(LoopChi2(information, X_i, T_i_k, 0.2 * axis), 0.2 * 0.2 / (0.12 * 0.12), 1e-9);
   const Eigen::Vector2d across(-axis.y(), axis.x());
-  EXPECT_NEAR(chi2(information, 0.1 * across), 0.1 * 0.1 / (0.03 * 0.03), 1e-6);
+  EXPECT_NEAR(LoopChi2(information, X_i, T_i_k, 0.1 * across), 0.1 * 0.1 / (0.03 * 0.03), 1e-6);
   EXPECT_TRUE(std::isfinite(LoopUncertaintyWeight(weak, 0.5)));
   weak.weak_sigma = 0.01;  // finer than a full closure: a full closure's information
   EXPECT_TRUE(LoopInformation(weak, 0.03, 0.005).isApprox(kLoop));
