@@ -221,8 +221,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
   counters_.prior_weak_by_search += weak_axis.has_value() ? 1 : 0;
   // Along the weak direction the translation is known to within the search's step (uniform over
   // +-linear_step, as kept above).
-  return Alignment{
-      T_a_b, searched, free_axis, free_sigma, wide, weak_axis, search.linear_step / std::sqrt(3.0)};
+  const double weak_sigma = weak_axis.has_value() ? search.linear_step / std::sqrt(3.0) : 0.0;
+  return Alignment{T_a_b, searched, free_axis, free_sigma, wide, weak_axis, weak_sigma};
 }
 
 }  // namespace gridslam::pipeline
