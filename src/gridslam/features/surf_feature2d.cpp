@@ -21,6 +21,15 @@ bool Inside(const cv::KeyPoint& kp, int width, int height) {
          kp.pt.y <= static_cast<float>(height - 1) && kp.size > 0.0F;
 }
 
+// The integral image of `img`, in a table kept per thread from call to call: a key map's table is
+// a few MB, and allocated afresh every call paid the kernel's page faults for it again. Compute()
+// rewrites every entry. Valid until the thread's next call.
+const IntegralImage& ThreadIntegral(const cv::Mat& img) {
+  thread_local IntegralImage integral;
+  integral.Compute(img);
+  return integral;
+}
+
 }  // namespace
 
 cv::Ptr<cv::Feature2D> SurfFeature2D::Create(const SurfOptions& options) {
@@ -53,10 +62,7 @@ void SurfFeature2D::detectAndCompute(cv::InputArray image, cv::InputArray mask,
     }
     return;
   }
-  // Kept per thread from call to call: a key map's table is a few MB, and allocated afresh every
-  // call paid the kernel's page faults for it again. Compute() rewrites every entry.
-  thread_local IntegralImage integral;
-  integral.Compute(img);
+  const IntegralImage& integral = ThreadIntegral(img);
   if (use_provided_keypoints) {
     std::erase_if(keypoints,
                   [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
@@ -79,10 +85,7 @@ void SurfFeature2D::DetectThenDescribe(const cv::Mat& img, std::vector<cv::KeyPo
     return;
   }
   // detect(): detection and orientation; compute(): keypoints inside the image, descriptors.
-  // Kept per thread from call to call: a key map's table is a few MB, and allocated afresh every
-  // call paid the kernel's page faults for it again. Compute() rewrites every entry.
-  thread_local IntegralImage integral;
-  integral.Compute(img);
+  const IntegralImage& integral = ThreadIntegral(img);
   Detect(integral, cv::Mat(), keypoints);
   Orient(integral, false, keypoints);
   std::erase_if(keypoints, [&](const cv::KeyPoint& kp) { return !Inside(kp, img.cols, img.rows); });
