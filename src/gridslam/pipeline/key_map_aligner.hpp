@@ -36,6 +36,11 @@ struct Alignment {
   /// the search's distinct peak to within weak_sigma [m] (Match::weak_axis).
   std::optional<Eigen::Vector2d> weak_axis = std::nullopt;
   double weak_sigma = 0.0;
+
+  /// The match of key maps i and k this alignment measures, with its free or weak axis.
+  [[nodiscard]] loop_closure::Match ToMatch(int i, int k) const {
+    return {i, k, T_i_k, free_axis, free_sigma, wide_search, weak_axis, weak_sigma};
+  }
 };
 
 class Aligner {

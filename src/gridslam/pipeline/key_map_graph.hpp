@@ -69,9 +69,8 @@ inline Eigen::Matrix3d Information(double sigma_xy, double sigma_theta) {
 /// axis only what the search window tells (1 / free_sigma^2), so the edge stays positive definite
 /// but all but free along the axis; along a weak axis (a corridor placed by the search's peak)
 /// what the search's step tells (1 / weak_sigma^2, never more than sigma_xy's). The edge's
-/// translation error is in the frame of k as measured
-/// (g2o's convention, pose_graph/edge_error.hpp), where the axis (given in i's frame) is
-/// R(T_i_k)^T free_axis.
+/// translation error is in the frame of k as measured (g2o's convention,
+/// pose_graph/edge_error.hpp), where an axis given in i's frame is R(T_i_k)^T axis.
 inline Eigen::Matrix3d LoopInformation(const loop_closure::Match& match, double sigma_xy,
                                        double sigma_theta) {
   Eigen::Matrix3d information = Information(sigma_xy, sigma_theta);

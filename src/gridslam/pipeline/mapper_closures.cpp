@@ -49,14 +49,7 @@ PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
                          ToSeconds(graph.node(i).time), ToSeconds(graph.node(k).time), u);
       continue;
     }
-    const Match match{i,
-                      k,
-                      measured->T_i_k,
-                      measured->free_axis,
-                      measured->free_sigma,
-                      measured->wide_search,
-                      measured->weak_axis,
-                      measured->weak_sigma};
+    const Match match = measured->ToMatch(i, k);
     const Decision decision = arbiter.OfferPrior(match, u, measured->from_search, graph);
     const Pose2& error = decision.error;
     GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
