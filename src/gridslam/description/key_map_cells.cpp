@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "gridslam/common/check.hpp"
+#include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/matching/grid_verification.hpp"
 
@@ -86,7 +87,8 @@ cv::Mat GridImage(const KeyMapCells& cells) {
 void SquaredObstacleDistances(const KeyMapCells& cells,
                               distance_transform::SquaredDistanceField& field) {
   const MapLimits& limits = cells.Limits();
-  thread_local std::vector<std::uint8_t> sources;
+  struct SourcesTag {};
+  auto& sources = ThreadScratch<SourcesTag, std::vector<std::uint8_t>>();
   sources.assign(static_cast<std::size_t>(limits.NumCells()), 0);
   ForEachBit(cells.ObstacleBits(), [&](std::size_t k) { sources[k] = 1; });
   distance_transform::SquaredEuclideanDistanceTransform(sources.data(), limits.Width(),
@@ -128,7 +130,8 @@ KeyMapGeometry Geometry(const KeyMapCells& cells, Distance&& distance_of) {
 
 KeyMapGeometry ComputeGeometry(const KeyMapCells& cells, const cv::Mat* distance_cells) {
   if (distance_cells == nullptr) {
-    thread_local distance_transform::SquaredDistanceField field;
+    struct FieldTag {};
+    auto& field = ThreadScratch<FieldTag, distance_transform::SquaredDistanceField>();
     SquaredObstacleDistances(cells, field);
     return ComputeGeometry(cells, field);
   }

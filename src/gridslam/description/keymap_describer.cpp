@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/features/surf_feature2d.hpp"
 #include "gridslam/grid/log_odds.hpp"
@@ -46,7 +47,8 @@ KeyMapImages KeyMapDescriber::Images(const keymap::KeyMap& key_map) const {
 }
 
 KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells) const {
-  thread_local distance_transform::SquaredDistanceField field;
+  struct FieldTag {};
+  auto& field = ThreadScratch<FieldTag, distance_transform::SquaredDistanceField>();
   SquaredObstacleDistances(cells, field);
   return Images(cells, field, {true, true, true});
 }
@@ -124,7 +126,8 @@ KeyMapDescription KeyMapDescriber::Describe(const keymap::KeyMap& key_map) const
   ImageSelection selection;
   selection.grid = options_.detect_image == "grid" || options_.descriptor_image == "grid";
   selection.obstacle = options_.descriptor_image == "obstacle";
-  thread_local distance_transform::SquaredDistanceField field;
+  struct FieldTag {};
+  auto& field = ThreadScratch<FieldTag, distance_transform::SquaredDistanceField>();
   SquaredObstacleDistances(description.cells, field);
   const KeyMapImages images = Images(description.cells, field, selection);
 

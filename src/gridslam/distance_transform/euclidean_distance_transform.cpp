@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "gridslam/common/check.hpp"
+#include "gridslam/common/thread_scratch.hpp"
 
 namespace gridslam::distance_transform {
 
@@ -157,12 +158,19 @@ void IntegerTransformRows(const std::uint8_t* is_source, int width, int height, 
   const auto w = static_cast<std::size_t>(width);
   const float max_squared = max_distance < kInfinity ? max_distance * max_distance : kInfinity;
   constexpr int kFar = 1 << 28;
-  thread_local std::vector<int32_t> last;
-  thread_local std::vector<int32_t> g;
-  thread_local std::vector<int32_t> source_row;
-  thread_local std::vector<int32_t> v;
-  thread_local std::vector<int32_t> first;
-  thread_local std::vector<int32_t> arg;
+  struct LastTag {};
+  struct GTag {};
+  struct SourceRowTag {};
+  struct VTag {};
+  struct FirstTag {};
+  struct ArgTag {};
+  using Ints = std::vector<int32_t>;
+  Ints& last = ThreadScratch<LastTag, Ints>();
+  Ints& g = ThreadScratch<GTag, Ints>();
+  Ints& source_row = ThreadScratch<SourceRowTag, Ints>();
+  Ints& v = ThreadScratch<VTag, Ints>();
+  Ints& first = ThreadScratch<FirstTag, Ints>();
+  Ints& arg = ThreadScratch<ArgTag, Ints>();
   last.assign(w, -kFar);
   g.resize(num_cells);
   v.resize(w);

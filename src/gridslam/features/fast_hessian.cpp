@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "gridslam/common/check.hpp"
+#include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/features/internal/response_layer.hpp"
 
 namespace gridslam::features {
@@ -168,8 +169,10 @@ std::vector<cv::KeyPoint> DetectFastHessian(const IntegralImage& integral,
   // The layers' buffers (several hundred kB each on a key map) are kept per thread from call to
   // call: allocated afresh, every call paid the kernel's page faults for them again. Every value
   // read is written first in the same call (the valid ranges), so nothing leaks between calls.
-  thread_local Layers layers;
-  thread_local Layers previous;
+  struct LayersTag {};
+  struct PreviousTag {};
+  Layers& layers = ThreadScratch<LayersTag, Layers>();
+  Layers& previous = ThreadScratch<PreviousTag, Layers>();
   layers.resize(static_cast<std::size_t>(n));
   previous.resize(static_cast<std::size_t>(n));
   for (int o = 0; o < options.num_octaves; ++o) {

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "gridslam/common/check.hpp"
+#include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/features/fast_hessian.hpp"
 #include "gridslam/features/integral_image.hpp"
 #include "gridslam/features/surf_descriptor.hpp"
@@ -25,7 +26,8 @@ bool Inside(const cv::KeyPoint& kp, int width, int height) {
 // a few MB, and allocated afresh every call paid the kernel's page faults for it again. Compute()
 // rewrites every entry. Valid until the thread's next call.
 const IntegralImage& ThreadIntegral(const cv::Mat& img) {
-  thread_local IntegralImage integral;
+  struct IntegralTag {};
+  IntegralImage& integral = ThreadScratch<IntegralTag, IntegralImage>();
   integral.Compute(img);
   return integral;
 }

@@ -22,6 +22,11 @@ GeometryCache::Geometry GeometryCache::Get(int id, const description::KeyMapCell
   return geometry;
 }
 
+void GeometryCache::Clear() {
+  entries_.clear();
+  index_.clear();
+}
+
 void GeometryCache::Put(int id, Geometry geometry) {
   if (const auto it = index_.find(id); it != index_.end()) {
     it->second->second = std::move(geometry);

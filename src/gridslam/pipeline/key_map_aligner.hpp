@@ -81,6 +81,9 @@ class GeometryCache {
   /// Stores the geometry of key map `id` (just described).
   void Put(int id, Geometry geometry);
   [[nodiscard]] long misses() const { return misses_; }
+  /// Drops every stored geometry (later ones are recomputed, as for any miss).
+  void Clear();
+  [[nodiscard]] std::size_t size() const { return entries_.size(); }
 
  private:
   void Touch(std::list<std::pair<int, Geometry>>::iterator it);
@@ -101,6 +104,8 @@ class FeatureAligner : public Aligner {
   /// The geometry of key map `id` as its description computed it (saves recomputing it for the
   /// alignments of a new key map).
   void Remember(int id, description::KeyMapGeometry geometry);
+  /// Frees the cached geometries (the end of a run: no alignment follows, or it recomputes).
+  void ReleaseCache() { cache_.Clear(); }
   [[nodiscard]] const AlignerCounters& counters() const { return counters_; }
 
  private:

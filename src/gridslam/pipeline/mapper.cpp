@@ -73,6 +73,7 @@ MapperStats Mapper::Impl::MergedStats() const {
 void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   GRIDSLAM_CHECK(robot >= 0 && robot < static_cast<int>(robots.size())) << robot;
   RobotState& state = robots[static_cast<std::size_t>(robot)];
+  GRIDSLAM_CHECK(state.front_end != nullptr) << "Mapper::AddFrame after Finish";
   front_now = frame.time;
   MapperStats& fs = front_stats;
   ++fs.frames;

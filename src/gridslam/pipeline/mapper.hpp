@@ -137,7 +137,9 @@ class Mapper {
   /// Processes the next frame of robot `robot` (frames of each robot in its log order; robots
   /// interleaved by time as a team would deliver them).
   void AddFrame(int robot, const Frame& frame);
-  /// Ends the run: final optimization, corrected poses, fusion.
+  /// Ends the run: final optimization, corrected poses, fusion. The front ends, the worker
+  /// thread and the scratch buffers of the calling thread are released first, so no AddFrame
+  /// may follow; the online API below stays valid.
   MapperResult Finish();
   /// Current statistics (also during the run).
   [[nodiscard]] const MapperStats& Stats() const;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/pipeline/key_map_worker.hpp"
@@ -65,6 +66,9 @@ std::vector<int> Mapper::Impl::ComponentNumbers() const {
 MapperResult Mapper::Impl::Finish() {
   for (std::size_t r = 0; r < robots.size(); ++r) {
     RobotState& state = robots[r];
+    if (state.front_end == nullptr) {
+      continue;  // finished before
+    }
     std::optional<keymap::KeyMap> last = state.front_end->Finish();
     if (last.has_value()) {
       SubmitKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
@@ -74,6 +78,15 @@ MapperResult Mapper::Impl::Finish() {
   if (worker != nullptr) {
     stats.cpu_seconds_worker = worker->CpuSeconds();
   }
+  // Nothing is matched, described or aligned any more: the fusion below holds the run's peak of
+  // memory, so the front ends' windows, the cached key-map geometries and both threads' scratch
+  // buffers go first (the worker's die with its thread).
+  worker.reset();
+  for (RobotState& state : robots) {
+    state.front_end.reset();
+  }
+  aligner.ReleaseCache();
+  ReleaseThreadScratch();
   now = front_now;
   graph.SetTime(now);
   FinalOptimization();
