@@ -41,6 +41,7 @@ std::string_view ToString(ClosureOutcome outcome) {
 
 Match Reversed(const Match& match) {
   Match reversed{match.k, match.i, match.T_i_k.Inverse()};
+  reversed.wide_search = match.wide_search;
   if (match.free_axis.has_value()) {
     reversed.free_axis = match.T_i_k.Rotation().transpose() * *match.free_axis;
     reversed.free_sigma = match.free_sigma;

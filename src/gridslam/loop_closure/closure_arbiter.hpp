@@ -58,7 +58,8 @@ struct Match {
   double weak_sigma = 0.0;
 };
 
-/// The match seen from the other side: i's pose in k's frame (the free axis rotated with it).
+/// The match seen from the other side: i's pose in k's frame (the free and weak axes rotated
+/// with it; the wide_search flag kept).
 [[nodiscard]] Match Reversed(const Match& match);
 /// `stored` oriented from group `from` to group `to` (group = robot or component, given by
 /// `group` of a vertex id), or nullopt if it links other groups.

@@ -302,6 +302,16 @@ TEST(ClosureArbiter, ReversingAWeakMatchRotatesItsWeakAxis) {
   EXPECT_FALSE(reversed.free_axis.has_value());
 }
 
+// Where a match was found does not depend on the side it is seen from: a wide-search match
+// oriented for a join keeps its burden of proof (two independent matches in its group).
+TEST(ClosureArbiter, ReversingKeepsTheWideSearchFlag) {
+  Match match{3, 7, Pose2(2.0, 1.0, 0.3)};
+  match.wide_search = true;
+  EXPECT_TRUE(Reversed(match).wide_search);
+  match.wide_search = false;
+  EXPECT_FALSE(Reversed(match).wide_search);
+}
+
 // A weak axis is measured: unlike a ridge's free axis, an offset along it counts in the checks.
 TEST(ClosureArbiter, AnOffsetAlongAWeakAxisCountsInTheChecks) {
   Match weak{3, 7, Pose2(2.0, 1.0, 0.0)};
