@@ -25,6 +25,8 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"prior_weak_by_search", s.prior_weak_by_search},
         {"verified_loops", s.verified_loops},
         {"key_map_fields_recomputed", s.geometry_recomputed},
+        {"window_refinements", s.window_refinements},
+        {"window_refined", s.window_refined},
         {"online_full_optimizations", s.online_full_optimizations},
         {"accepted", s.accepted},
         {"rejected_gate", s.rejected_gate},

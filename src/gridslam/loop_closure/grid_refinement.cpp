@@ -13,6 +13,7 @@ Status RefinementOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(max_points >= 1, "refinement.max_points >= 1"));
   GRIDSLAM_RETURN_IF_ERROR(Require(min_points >= 3, "refinement.min_points >= 3"));
   GRIDSLAM_RETURN_IF_ERROR(Require(max_step > 0.0, "refinement.max_step > 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(window_travel >= 0.0, "refinement.window_travel >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(points == "key_map" || points == "scans", "refinement.points is key_map or scans"));
   return Status::Ok();
@@ -94,6 +95,7 @@ RefinementResult RefineOnDistanceField(std::span<const Eigen::Vector2d> points_b
   System s = Linearize(points_b, stride, distance_a, T, options);
   for (int it = 0; it < options.max_iterations; ++it) {
     if (s.used < options.min_points) {
+      result.points = s.used;
       return result;
     }
     Eigen::Matrix3d H = s.H;
@@ -117,6 +119,7 @@ RefinementResult RefineOnDistanceField(std::span<const Eigen::Vector2d> points_b
   }
   if (s.used < options.min_points ||
       (T.translation() - T_a_b.translation()).norm() > options.max_step) {
+    result.points = s.used;
     return result;
   }
   result.ok = true;

@@ -33,6 +33,13 @@ struct RefinementOptions {
   /// the one that fits the neighbourhood of b's scans, which is what the corrected trajectory
   /// needs (docs/results.md: intel 0.0203 -> 0.0186 m).
   std::string points = "scans";
+  /// When the refinement of "scans" fails for want of usable points (a key map of one or two
+  /// scans, a partial overlap), it is run again on b's returns together with those of the
+  /// robot's preceding key maps within this much path [m] (the scans b's cells were made of,
+  /// placed by the front end), at most `max_points` returns. 0: off, the default: measured on
+  /// the robustness matrix at 7.5 and 3 m, it moves large loops both ways (docs/robustness.md,
+  /// "Round 19").
+  double window_travel = 0.0;
   template <class V>
   void Visit(V& v) {
     v("enabled", enabled, "Refine accepted alignments on the distance field");
@@ -43,6 +50,8 @@ struct RefinementOptions {
     v("min_points", min_points, "Minimum usable points [-]");
     v("max_step", max_step, "Refinement may move the transform at most this far [m]");
     v("points", points, "Points of b refined: key_map (obstacle cells) or scans (its returns)");
+    v("window_travel", window_travel,
+      "Too few usable returns: add the preceding key maps' returns within this path [m]; 0 off");
   }
   [[nodiscard]] Status Validate() const;
 };
@@ -53,7 +62,9 @@ struct RefinementResult {
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  ///< J^T W J at the solution, per point.
   double rms = 0.0;                                   ///< RMS distance of the used points [m].
   double inlier_fraction = 0.0;  ///< Used points within `huber` of an obstacle [-].
-  int points = 0;                ///< Points used at the solution.
+  /// Points used at the solution; when not ok, at the last linearization (fewer than
+  /// min_points: the refinement failed for want of points).
+  int points = 0;
   int iterations = 0;
 };
 

@@ -59,6 +59,30 @@ TEST(GridRefinement, FailsWithoutOverlap) {
   const RefinementResult result =
       RefineOnDistanceField(far, distance, Pose2::Identity(), RefinementOptions{});
   EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.points, 0);  // failed for want of usable points
+}
+
+TEST(GridRefinement, ReportsHowManyPointsItCouldUseWhenTooFew) {
+  const Grid2D<std::uint8_t> obstacles = Room();
+  const Grid2D<float> distance = distance_transform::DistanceTransformMetres(obstacles);
+  // 30 points on the bottom wall (y = -4 m), 20 far away.
+  std::vector<Eigen::Vector2d> points;
+  for (int k = 0; k < 30; ++k) {
+    points.push_back(obstacles.Limits().CellCenter({40 + 3 * k, 20}));
+  }
+  for (int k = 0; k < 20; ++k) {
+    points.emplace_back(100.0 + k, 100.0);
+  }
+  RefinementOptions options;
+  options.min_points = 40;
+  const RefinementResult few = RefineOnDistanceField(points, distance, Pose2::Identity(), options);
+  EXPECT_FALSE(few.ok);
+  EXPECT_EQ(few.points, 30);
+  options.min_points = 20;
+  const RefinementResult enough =
+      RefineOnDistanceField(points, distance, Pose2::Identity(), options);
+  EXPECT_TRUE(enough.ok);
+  EXPECT_EQ(enough.points, 30);
 }
 
 TEST(GridRefinement, OptionsNameThePointsToRefine) {
@@ -68,6 +92,9 @@ TEST(GridRefinement, OptionsNameThePointsToRefine) {
   options.points = "key_map";
   EXPECT_TRUE(options.Validate().ok());
   options.points = "cells";
+  EXPECT_FALSE(options.Validate().ok());
+  options.points = "scans";
+  options.window_travel = -1.0;
   EXPECT_FALSE(options.Validate().ok());
 }
 

@@ -60,6 +60,51 @@ std::span<const Eigen::Vector2d> FeatureAligner::RefinementPoints(
              : std::span<const Eigen::Vector2d>(geometry_b.obstacle_points);
 }
 
+std::vector<Eigen::Vector2d> RefinementWindow(const KeyMapGraph& graph, int k, double max_travel,
+                                              int max_points) {
+  const KeyMapNode& b = graph.node(k);
+  std::vector<Eigen::Vector2d> points = b.scan_points;
+  const Pose2 T_key_odom = b.T_odom_key.Inverse();
+  for (int id = b.previous; id >= 0 && static_cast<int>(points.size()) < max_points;) {
+    const KeyMapNode& before = graph.node(id);
+    if (b.travel - before.travel > max_travel) {
+      break;
+    }
+    const PointTransform to_b(T_key_odom * before.T_odom_key);
+    for (const Eigen::Vector2d& p : before.scan_points) {
+      points.push_back(to_b(p));
+    }
+    id = before.previous;
+  }
+  return points;
+}
+
+loop_closure::RefinementResult FeatureAligner::Refine(
+    int k, const description::KeyMapGeometry& geometry_b, const Grid2D<float>& distance_a,
+    const Pose2& start, const loop_closure::RefinementOptions& refinement) {
+  const KeyMapNode& b = graph_.node(k);
+  const std::span<const Eigen::Vector2d> points =
+      RefinementPoints(b, geometry_b, refinement.min_points);
+  loop_closure::RefinementResult refined =
+      loop_closure::RefineOnDistanceField(points, distance_a, start, refinement);
+  if (refined.ok || refined.points >= refinement.min_points || refinement.points != "scans" ||
+      refinement.window_travel <= 0.0 || b.previous < 0) {
+    return refined;
+  }
+  const std::vector<Eigen::Vector2d> window =
+      RefinementWindow(graph_, k, refinement.window_travel, refinement.max_points);
+  if (window.size() <= b.scan_points.size()) {
+    return refined;
+  }
+  ++counters_.window_refinements;
+  loop_closure::RefinementResult again =
+      loop_closure::RefineOnDistanceField(window, distance_a, start, refinement);
+  counters_.window_refined += again.ok ? 1 : 0;
+  GRIDSLAM_LOG_DEBUG("refinement of {}: {} usable of {} points, window of {}: {}", k,
+                     refined.points, points.size(), window.size(), again.ok ? "ok" : "failed");
+  return again;
+}
+
 namespace {
 
 matching::VerificationInput Verification(const description::KeyMapGeometry& a,
@@ -102,9 +147,8 @@ std::optional<Alignment> FeatureAligner::Align(int i, int k, const Pose2* prior,
   ++counters_.verified;
   Pose2 T_a_b = result.T_a_b;
   if (options_.refinement.enabled) {
-    const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-        RefinementPoints(b, *geometry_b, options_.refinement.min_points), geometry_a->distance,
-        T_a_b, options_.refinement);
+    const loop_closure::RefinementResult refined =
+        Refine(k, *geometry_b, geometry_a->distance, T_a_b, options_.refinement);
     if (refined.ok) {
       T_a_b = refined.T_a_b;
     }
@@ -115,7 +159,6 @@ std::optional<Alignment> FeatureAligner::Align(int i, int k, const Pose2* prior,
 std::optional<Alignment> FeatureAligner::RefineFromPrior(
     int i, int k, const Pose2& T_i_k, const description::KeyMapGeometry& geometry_a,
     const description::KeyMapGeometry& geometry_b, double uncertainty_distance) {
-  const KeyMapNode& b = graph_.node(k);
   loop_closure::RefinementOptions refinement = options_.refinement;
   refinement.max_distance = std::max(refinement.max_distance, 0.5);
   // After a long loop the prediction may be off by more than the refinement converges from.
@@ -167,9 +210,8 @@ std::optional<Alignment> FeatureAligner::RefineFromPrior(
       free_sigma = (wide ? wide_window : window) / std::sqrt(3.0);
     }
   }
-  const loop_closure::RefinementResult refined = loop_closure::RefineOnDistanceField(
-      RefinementPoints(b, geometry_b, options_.refinement.min_points), geometry_a.distance, start,
-      refinement);
+  const loop_closure::RefinementResult refined =
+      Refine(k, geometry_b, geometry_a.distance, start, refinement);
   if (!refined.ok || refined.inlier_fraction < options_.prior_min_inliers) {
     GRIDSLAM_LOG_DEBUG("prior refinement {}-{}: refused, ok {}, inliers {:.2f}", i, k, refined.ok,
                        refined.inlier_fraction);

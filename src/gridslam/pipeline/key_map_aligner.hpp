@@ -66,6 +66,10 @@ struct AlignerCounters {
   /// search's distinct peak.
   long prior_weak_by_search = 0;
   long geometry_recomputed = 0;  ///< Key-map geometries recomputed (not in the cache).
+  /// Refinements that failed for want of points and were run again on a window of returns,
+  /// and how many of those succeeded.
+  long window_refinements = 0;
+  long window_refined = 0;
 };
 
 /// The geometry (distance field, obstacle points) of the key maps used most recently, at most
@@ -93,6 +97,12 @@ class GeometryCache {
   long misses_ = 0;
 };
 
+/// The returns of key map k's scans and of its robot's preceding key maps, in k's frame (placed by
+/// the front end's poses), newest first, while the path from them to k is at most `max_travel`
+/// [m] and until `max_points` returns are collected (the last key map is taken whole).
+std::vector<Eigen::Vector2d> RefinementWindow(const KeyMapGraph& graph, int k, double max_travel,
+                                              int max_points);
+
 class FeatureAligner : public Aligner {
  public:
   /// `graph` is borrowed (its key maps' descriptions are aligned).
@@ -115,6 +125,11 @@ class FeatureAligner : public Aligner {
                                            double uncertainty_distance);
   [[nodiscard]] static std::span<const Eigen::Vector2d> RefinementPoints(
       const KeyMapNode& b, const description::KeyMapGeometry& geometry_b, int min_points);
+  /// Refines T_a_b from `start` on RefinementPoints of k; when that fails for want of usable
+  /// points, again on the returns of k and of its robot's preceding key maps (RefinementWindow).
+  loop_closure::RefinementResult Refine(int k, const description::KeyMapGeometry& geometry_b,
+                                        const Grid2D<float>& distance_a, const Pose2& start,
+                                        const loop_closure::RefinementOptions& refinement);
 
   const KeyMapGraph& graph_;
   matching::AlignOptions matching_;

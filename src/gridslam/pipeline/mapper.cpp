@@ -261,6 +261,8 @@ void Mapper::Impl::SyncStats() {
   stats.prior_ridges = counters.prior_ridges;
   stats.prior_weak_by_search = counters.prior_weak_by_search;
   stats.geometry_recomputed = counters.geometry_recomputed;
+  stats.window_refinements = counters.window_refinements;
+  stats.window_refined = counters.window_refined;
   stats.accepted = graph.loop_edges_added();
   stats.rejected_gate = graph.NumClosures(ClosureOutcome::kGated);
   stats.pruned = graph.NumClosures(ClosureOutcome::kPruned);

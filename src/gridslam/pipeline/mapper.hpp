@@ -86,6 +86,10 @@ struct MapperStats {
   long far_matches = 0;  ///< Scans matched against the larger matching window (front_end.hpp).
   long wall_normal_frames = 0;   ///< Frames judged on the wall normals (a noisy laser).
   long geometry_recomputed = 0;  ///< Key-map distance fields recomputed for alignments.
+  /// Refinements short of usable points run again on the preceding key maps' returns, and how
+  /// many of them succeeded (loop_closure::RefinementOptions::window_travel).
+  long window_refinements = 0;
+  long window_refined = 0;
   double seconds_front_end = 0.0;
   double seconds_description = 0.0;
   double seconds_alignment = 0.0;
