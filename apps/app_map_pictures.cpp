@@ -51,10 +51,19 @@ Canvas MakeCanvas(const OccupancyImage& map, int channels) {
   for (int j = 0; j < limits.Height(); ++j) {
     std::uint8_t* row = canvas.image.ptr<std::uint8_t>(kMarginTop + limits.Height() - 1 - j) +
                         kMarginLeft * channels;
+    const signed char* cells = &map.Cells()[static_cast<std::size_t>(j) * limits.Width()];
+    const auto grey = [](signed char v) -> std::uint8_t {
+      return v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
+    };
+    if (channels == 1) {
+      std::transform(cells, cells + limits.Width(), row, grey);
+      continue;
+    }
     for (int i = 0; i < limits.Width(); ++i) {
-      const signed char v = map(i, j);
-      const std::uint8_t g = v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
-      std::fill(row + i * channels, row + (i + 1) * channels, g);
+      const std::uint8_t g = grey(cells[i]);
+      for (int c = 0; c < channels; ++c) {
+        row[i * channels + c] = g;
+      }
     }
   }
   return canvas;

@@ -69,7 +69,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     const TiledGrid<float> share = quality::DisagreementShare(check, options, 0.02F, threads);
     check = quality::SelfCheckResult{check.stats, {}, {}};  // the per-cell counts are done
     ReleaseFreedMemory();
-    const cv::Mat image = quality::RenderQualityImage(result.maps[c], fusion, share);
+    const cv::Mat image = quality::RenderQualityImage(result.maps[c], fusion, share, threads);
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (!cv::imwrite(path, image)) {
       return RuntimeError("cannot write " + path);

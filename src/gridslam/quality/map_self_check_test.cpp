@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "gridslam/grid/log_odds.hpp"
 #include "gridslam/quality/quality_image.hpp"
 
 namespace gridslam::quality {
@@ -215,6 +216,36 @@ TEST(MapSelfCheck, HeatLayerIsAReflectedGaussianBlurWhateverTheThreads) {
     }
   }
   EXPECT_GT(compared, 1000);
+}
+
+TEST(MapSelfCheck, QualityImageIsTheSameFromEitherMapAndWhateverTheThreads) {
+  const SimRun run = MakeRun(0.0, 0.5);
+  const fusion::FusionOptions fusion;
+  const Grid2D<float> log_odds = fusion::FuseScans(run.posed, fusion);
+  const SelfCheckResult bad = CheckMap(log_odds, run.posed, fusion, SelfCheckOptions{});
+  const TiledGrid<float> share = DisagreementShare(bad, SelfCheckOptions{});
+  const OccupancyImage map = fusion::ToOccupancy(log_odds, fusion);
+  const cv::Mat one = RenderQualityImage(map, share, 1);
+  const cv::Mat three =
+      RenderQualityImage(TiledGrid<float>::FromDense(log_odds, kUnknownLogOdds), fusion, share, 3);
+  ASSERT_EQ(one.size(), three.size());
+  EXPECT_EQ(cv::norm(one, three, cv::NORM_INF), 0.0);
+  // Every pixel: the map's grey, blended towards red by twice the share (row 0 at the top).
+  int red = 0;
+  for (int j = 0; j < map.Height(); ++j) {
+    for (int i = 0; i < map.Width(); ++i) {
+      const signed char v = map(i, j);
+      const double g = v == kOccupiedCell ? 0.0 : (v == kFreeCell ? 255.0 : 205.0);
+      const float s = share.Get(i, j);
+      const double a = s > 0.0F ? std::min(1.0, 2.0 * s) : 0.0;
+      const cv::Vec3b expected(static_cast<std::uint8_t>((1.0 - a) * g),
+                               static_cast<std::uint8_t>((1.0 - a) * g),
+                               static_cast<std::uint8_t>((1.0 - a) * g + a * 255.0));
+      ASSERT_EQ(one.at<cv::Vec3b>(map.Height() - 1 - j, i), expected) << i << ", " << j;
+      red += a > 0.5 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(red, 10);
 }
 
 TEST(SelfCheckStats, SharesAndMerge) {

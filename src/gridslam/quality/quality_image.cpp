@@ -91,11 +91,16 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
     }
   }
   const int span = kTile + 2 * r;
+  // Returns fall on walls: most rows of a tile hold none. A term whose input is 0 adds exactly 0
+  // to a sum of non-negative terms, so the passes below visit the non-zero inputs only, in the
+  // order of the kernel taps, and give the full convolution's numbers bit for bit.
   const auto smooth = [&](std::size_t begin, std::size_t end) {
     std::vector<float> row_r(static_cast<std::size_t>(span));
     std::vector<float> row_d(static_cast<std::size_t>(span));
     std::vector<float> h_r(static_cast<std::size_t>(span) * kTile);
     std::vector<float> h_d(static_cast<std::size_t>(span) * kTile);
+    std::vector<char> h_nonzero(static_cast<std::size_t>(span));
+    std::vector<int> nonzero;
     std::vector<float> v_r(static_cast<std::size_t>(kTile));
     std::vector<float> v_d(static_cast<std::size_t>(kTile));
     for (std::size_t n = begin; n < end; ++n) {
@@ -108,23 +113,47 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
       for (int y = 0; y < h + 2 * r; ++y) {
         ReflectedRow(returns, i0 - r, w + 2 * r, j0 - r + y, row_r.data());
         ReflectedRow(disagreeing, i0 - r, w + 2 * r, j0 - r + y, row_d.data());
+        nonzero.clear();
+        for (int p = 0; p < w + 2 * r; ++p) {
+          if (row_r[static_cast<std::size_t>(p)] != 0.0F ||
+              row_d[static_cast<std::size_t>(p)] != 0.0F) {
+            nonzero.push_back(p);
+          }
+        }
+        h_nonzero[static_cast<std::size_t>(y)] = nonzero.empty() ? 0 : 1;
+        if (nonzero.empty()) {
+          continue;
+        }
         float* out_r = h_r.data() + static_cast<std::size_t>(y) * kTile;
         float* out_d = h_d.data() + static_cast<std::size_t>(y) * kTile;
         std::fill(out_r, out_r + w, 0.0F);
         std::fill(out_d, out_d + w, 0.0F);
         for (int m = 0; m < ksize; ++m) {
           const float c = kernel[static_cast<std::size_t>(m)];
-          for (int x = 0; x < w; ++x) {
-            out_r[x] += c * row_r[static_cast<std::size_t>(x + m)];
-            out_d[x] += c * row_d[static_cast<std::size_t>(x + m)];
+          for (const int p : nonzero) {
+            const int x = p - m;
+            if (x >= 0 && x < w) {
+              out_r[x] += c * row_r[static_cast<std::size_t>(p)];
+              out_d[x] += c * row_d[static_cast<std::size_t>(p)];
+            }
           }
         }
       }
       float* out = nullptr;  // the share's tile, allocated at its first cell with returns
       for (int y = 0; y < h; ++y) {
+        bool any = false;
+        for (int m = 0; m < ksize && !any; ++m) {
+          any = h_nonzero[static_cast<std::size_t>(y + m)] != 0;
+        }
+        if (!any && min_returns > 0.0F) {
+          continue;  // every smoothed count is 0 < min_returns: the share stays -1
+        }
         std::fill(v_r.begin(), v_r.end(), 0.0F);
         std::fill(v_d.begin(), v_d.end(), 0.0F);
         for (int m = 0; m < ksize; ++m) {
+          if (h_nonzero[static_cast<std::size_t>(y + m)] == 0) {
+            continue;
+          }
           const float c = kernel[static_cast<std::size_t>(m)];
           const float* in_r = h_r.data() + static_cast<std::size_t>(y + m) * kTile;
           const float* in_d = h_d.data() + static_cast<std::size_t>(y + m) * kTile;
@@ -152,43 +181,93 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
 
 namespace {
 
-template <class Occupancy>
-cv::Mat Render(const MapLimits& limits, Occupancy occupancy, const TiledGrid<float>& share) {
-  cv::Mat image(limits.Height(), limits.Width(), CV_8UC3);
-  for (int j = 0; j < limits.Height(); ++j) {
-    auto* row = image.ptr<cv::Vec3b>(limits.Height() - 1 - j);
-    for (int i = 0; i < limits.Width(); ++i) {
-      const signed char v = occupancy(i, j);
-      const double g = v == kOccupiedCell ? 0.0 : (v == kFreeCell ? 255.0 : 205.0);
-      const float s = share.Limits().Contains({i, j}) ? share.Get(i, j) : -1.0F;
-      const double a = s > 0.0F ? std::min(1.0, 2.0 * s) : 0.0;
-      // Blend towards pure red (BGR 0, 0, 255); walls stay dark enough to read.
-      const auto blue = static_cast<std::uint8_t>((1.0 - a) * g);
-      const auto red = static_cast<std::uint8_t>((1.0 - a) * g + a * 255.0);
-      row[i] = cv::Vec3b(blue, blue, red);
+/// Row j of `grid` over cells [0, width) (`outside` beyond the grid's limits), a tile's run at a
+/// time.
+void GridRow(const TiledGrid<float>& grid, int j, int width, float outside, float* out) {
+  if (j < 0 || j >= grid.Height()) {
+    std::fill(out, out + width, outside);
+    return;
+  }
+  const int inside = std::min(width, grid.Width());
+  const int tj = j >> TiledGrid<float>::kTileBits;
+  const std::size_t row = static_cast<std::size_t>(j & (kTile - 1)) * kTile;
+  for (int i0 = 0; i0 < inside; i0 += kTile) {
+    const int run = std::min(kTile, inside - i0);
+    const float* tile = grid.Tile(i0 >> TiledGrid<float>::kTileBits, tj);
+    if (tile == nullptr) {
+      std::fill(out + i0, out + i0 + run, grid.Fill());
+    } else {
+      std::copy(tile + row, tile + row + run, out + i0);
     }
   }
+  std::fill(out + inside, out + width, outside);
+}
+
+/// `occupancy_row(j, cells, scratch)` writes the occupancy of map row j into cells[0, width)
+/// (scratch: `width` floats of its own). Rows are cut into `threads` parts.
+template <class OccupancyRow>
+cv::Mat Render(const MapLimits& limits, OccupancyRow occupancy_row, const TiledGrid<float>& share,
+               int threads) {
+  const int width = limits.Width();
+  const int height = limits.Height();
+  cv::Mat image(height, width, CV_8UC3);
+  const auto render = [&](std::size_t begin, std::size_t end) {
+    std::vector<signed char> cells(static_cast<std::size_t>(width));
+    std::vector<float> shares(static_cast<std::size_t>(width));
+    std::vector<float> scratch(static_cast<std::size_t>(width));
+    for (auto j = static_cast<int>(begin); j < static_cast<int>(end); ++j) {
+      occupancy_row(j, cells.data(), scratch.data());
+      GridRow(share, j, width, -1.0F, shares.data());
+      auto* row = image.ptr<cv::Vec3b>(height - 1 - j);
+      for (int i = 0; i < width; ++i) {
+        const signed char v = cells[static_cast<std::size_t>(i)];
+        const double g = v == kOccupiedCell ? 0.0 : (v == kFreeCell ? 255.0 : 205.0);
+        const float s = shares[static_cast<std::size_t>(i)];
+        if (!(s > 0.0F)) {
+          const auto grey = static_cast<std::uint8_t>(g);
+          row[i] = cv::Vec3b(grey, grey, grey);
+          continue;
+        }
+        const double a = std::min(1.0, 2.0 * s);
+        // Blend towards pure red (BGR 0, 0, 255); walls stay dark enough to read.
+        const auto blue = static_cast<std::uint8_t>((1.0 - a) * g);
+        const auto red = static_cast<std::uint8_t>((1.0 - a) * g + a * 255.0);
+        row[i] = cv::Vec3b(blue, blue, red);
+      }
+    }
+  };
+  const auto rows = static_cast<std::size_t>(height);
+  RunParts(rows, PartCount(rows, threads),
+           [&](std::size_t /*part*/, std::size_t begin, std::size_t end) { render(begin, end); });
   return image;
 }
 
 }  // namespace
 
-cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share) {
+cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share, int threads) {
   return Render(
-      map.Limits(), [&](int i, int j) { return map(i, j); }, share);
+      map.Limits(),
+      [&](int j, signed char* cells, float* /*scratch*/) {
+        const signed char* row = &map.Cells()[static_cast<std::size_t>(j) * map.Width()];
+        std::copy(row, row + map.Width(), cells);
+      },
+      share, threads);
 }
 
 cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
-                           const TiledGrid<float>& share) {
+                           const TiledGrid<float>& share, int threads) {
   const auto occupied = static_cast<float>(ProbabilityToLogOdds(fusion.occupied_probability));
   const auto free = static_cast<float>(ProbabilityToLogOdds(fusion.free_probability));
   return Render(
       log_odds.Limits(),
-      [&](int i, int j) {
-        const float l = log_odds.Get(i, j);
-        return l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+      [&](int j, signed char* cells, float* values) {
+        GridRow(log_odds, j, log_odds.Width(), log_odds.Fill(), values);
+        for (int i = 0; i < log_odds.Width(); ++i) {
+          const float l = values[i];
+          cells[i] = l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
+        }
       },
-      share);
+      share, threads);
 }
 
 }  // namespace gridslam::quality

@@ -20,11 +20,13 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
                                    float min_returns = 0.02F, int threads = 1);
 
 /// BGR image (row 0 at the top, as map.png): grey occupancy, red where the share is high
-/// (full red at a share of 0.5 or more).
-cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share);
+/// (full red at a share of 0.5 or more). Rows are rendered `threads` at once (the same image
+/// whatever the count).
+cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share,
+                           int threads = 1);
 /// The same from the fused log-odds map, thresholded as fusion::ToOccupancy does (without
 /// holding the occupancy image).
 cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
-                           const TiledGrid<float>& share);
+                           const TiledGrid<float>& share, int threads = 1);
 
 }  // namespace gridslam::quality
