@@ -11,6 +11,8 @@
 #include "gridslam/common/result.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 
+#include "app_image_buffer.hpp"
+
 namespace gridslam::app {
 
 /// Per-robot data the writer needs besides the mapper's result.
@@ -24,8 +26,10 @@ struct RobotOutput {
 };
 
 /// Writes every output file into `dir` (which exists). `trajectory_frame`: "base" or "laser".
+/// The pictures are drawn in `pictures` (a buffer of their own when null).
 Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& result,
                        const std::vector<RobotOutput>& robots, const std::string& trajectory_frame,
-                       const std::string& config_yaml, nlohmann::json report);
+                       const std::string& config_yaml, nlohmann::json report,
+                       ImageBuffer* pictures = nullptr);
 
 }  // namespace gridslam::app

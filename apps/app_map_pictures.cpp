@@ -41,13 +41,14 @@ struct Canvas {
   }
 };
 
-/// `channels` 1: grey levels (map.png); 3: BGR, for the coloured layers of map_graph.png.
-Canvas MakeCanvas(const OccupancyImage& map, int channels) {
+/// `channels` 1: grey levels (map.png); 3: BGR, for the coloured layers of map_graph.png. Drawn
+/// in `pictures`.
+Canvas MakeCanvas(const OccupancyImage& map, int channels, ImageBuffer& pictures) {
   const MapLimits& limits = map.Limits();
-  Canvas canvas{
-      cv::Mat(kMarginTop + limits.Height() + kMarginBottom,
-              kMarginLeft + limits.Width() + kMarginRight, CV_8UC(channels), cv::Scalar::all(255)),
-      limits};
+  Canvas canvas{pictures.Image(kMarginTop + limits.Height() + kMarginBottom,
+                               kMarginLeft + limits.Width() + kMarginRight, CV_8UC(channels)),
+                limits};
+  canvas.image.setTo(cv::Scalar::all(255));
   for (int j = 0; j < limits.Height(); ++j) {
     std::uint8_t* row = canvas.image.ptr<std::uint8_t>(kMarginTop + limits.Height() - 1 - j) +
                         kMarginLeft * channels;
@@ -150,15 +151,17 @@ double TickSpacing(double length_m) {
   return 10.0 * power;
 }
 
-Status WriteMapPicture(const std::string& path, const OccupancyImage& map) {
-  Canvas canvas = MakeCanvas(map, 1);  // black, white and grey: one channel is a third to encode
+Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures) {
+  Canvas canvas =
+      MakeCanvas(map, 1, pictures);  // black, white and grey: one channel is a third to encode
   DrawAxesAndScale(canvas);
   return Write(path, canvas.image);
 }
 
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
-                         const pipeline::MapperResult& result, int component) {
-  Canvas canvas = MakeCanvas(map, 3);
+                         const pipeline::MapperResult& result, int component,
+                         ImageBuffer& pictures) {
+  Canvas canvas = MakeCanvas(map, 3, pictures);
   std::vector<std::size_t> robots;
   for (std::size_t r = 0; r < result.trajectories.size(); ++r) {
     if (result.component_of_robot[r] != component) {

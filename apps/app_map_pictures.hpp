@@ -9,6 +9,8 @@
 #include "gridslam/grid/grid2d.hpp"
 #include "gridslam/pipeline/mapper.hpp"
 
+#include "app_image_buffer.hpp"
+
 namespace gridslam::app {
 
 /// Colour of robot `r`'s trajectory in map_graph.png, as BGR (none of them is the closures'
@@ -22,12 +24,14 @@ Bgr RobotColour(std::size_t robot);
 double TickSpacing(double length_m);
 
 /// map.png: the occupancy map (free white, occupied black, unknown grey) with axes in metres of
-/// the map frame along the left and bottom edges and a scale bar; an 8-bit grey PNG.
-Status WriteMapPicture(const std::string& path, const OccupancyImage& map);
+/// the map frame along the left and bottom edges and a scale bar; an 8-bit grey PNG, drawn in
+/// `pictures`.
+Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures);
 
 /// map_graph.png: map.png's picture plus the trajectories of the robots of map `component`, the
 /// key maps, the accepted loop closures and a legend naming each.
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
-                         const pipeline::MapperResult& result, int component);
+                         const pipeline::MapperResult& result, int component,
+                         ImageBuffer& pictures);
 
 }  // namespace gridslam::app

@@ -39,8 +39,11 @@ void QualityScans::Add(int robot, long index, const Frame& frame) {
 Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::MapperResult& result,
                                     const QualityScans& scans,
                                     const quality::SelfCheckOptions& options,
-                                    const fusion::FusionOptions& fusion, int threads) {
+                                    const fusion::FusionOptions& fusion, int threads,
+                                    ImageBuffer* pictures) {
   QualityOutcome outcome;
+  ImageBuffer own;
+  ImageBuffer& buffer = pictures != nullptr ? *pictures : own;
   if (!options.enabled) {
     outcome.report = {{"enabled", false}};
     return outcome;
@@ -69,7 +72,9 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     const TiledGrid<float> share = quality::DisagreementShare(check, options, 0.02F, threads);
     check = quality::SelfCheckResult{check.stats, {}, {}};  // the per-cell counts are done
     ReleaseFreedMemory();
-    const cv::Mat image = quality::RenderQualityImage(result.maps[c], fusion, share, threads);
+    const MapLimits& limits = result.maps[c].Limits();
+    cv::Mat image = buffer.Image(limits.Height(), limits.Width(), CV_8UC3);
+    quality::RenderQualityImage(result.maps[c], fusion, share, threads, image);
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (!cv::imwrite(path, image)) {
       return RuntimeError("cannot write " + path);

@@ -13,6 +13,8 @@
 #include "gridslam/pipeline/mapper.hpp"
 #include "gridslam/quality/self_check_options.hpp"
 
+#include "app_image_buffer.hpp"
+
 namespace gridslam::app {
 
 class QualityScans {
@@ -43,10 +45,12 @@ struct QualityOutcome {
   std::string summary;    ///< One line for the printed summary.
 };
 
-/// Runs the self-check on every map component of `result` and writes the heat images into `dir`.
+/// Runs the self-check on every map component of `result` and writes the heat images into `dir`
+/// (drawn in `pictures`; a buffer of their own when null).
 Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::MapperResult& result,
                                     const QualityScans& scans,
                                     const quality::SelfCheckOptions& options,
-                                    const fusion::FusionOptions& fusion, int threads = 1);
+                                    const fusion::FusionOptions& fusion, int threads = 1,
+                                    ImageBuffer* pictures = nullptr);
 
 }  // namespace gridslam::app

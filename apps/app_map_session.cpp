@@ -49,8 +49,10 @@ nlohmann::json MapSession::Report(const pipeline::MapperResult& result) const {
 Result<std::string> MapSession::Write(const std::string& dir, const pipeline::MapperResult& result,
                                       nlohmann::json report, const std::string& producer) const {
   const auto checked = std::chrono::steady_clock::now();
+  // One buffer for the pictures of the self-check and of the outputs, drawn one after another.
+  ImageBuffer pictures;
   auto quality = RunSelfCheck(dir, result, quality_scans_, options_.quality, options_.fusion,
-                              options_.compute.Threads());
+                              options_.compute.Threads(), &pictures);
   report["time_s"]["self_check"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
   report["threads"] = options_.compute.Threads();
@@ -61,8 +63,8 @@ Result<std::string> MapSession::Write(const std::string& dir, const pipeline::Ma
   ReleaseFreedMemory();
   const std::string config =
       "# " + producer + ": effective configuration\n" + io::OptionsToYaml(options_);
-  GRIDSLAM_RETURN_IF_ERROR(
-      WriteMapOutputs(dir, result, robots_, options_.eval.trajectory_frame, config, report));
+  GRIDSLAM_RETURN_IF_ERROR(WriteMapOutputs(dir, result, robots_, options_.eval.trajectory_frame,
+                                           config, report, &pictures));
   return quality.value().summary;
 }
 

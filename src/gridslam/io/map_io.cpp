@@ -261,23 +261,24 @@ std::uint8_t TrinaryPixel(signed char occupancy) {
 
 Status WriteMapImage(const std::string& path, const OccupancyImage& map) {
   if (HasExtension(path, ".pgm")) {
-    // Straight into the file's contents, rows flipped (PGM row 0 is the top): one copy of a map
-    // that may hold tens of millions of cells.
+    // Row by row into the file, rows flipped (PGM row 0 is the top): a map may hold tens of
+    // millions of cells, and no copy of it is made.
     char header[128];
     std::snprintf(header, sizeof(header), "P5\n# CREATOR: gridslam %.3f m/pix\n%d %d\n255\n",
                   map.Limits().Resolution(), map.Width(), map.Height());
-    std::string contents(header);
-    const std::size_t offset = contents.size();
-    const auto w = static_cast<std::size_t>(map.Width());
-    contents.resize(offset + map.size());
-    for (int j = 0; j < map.Height(); ++j) {
-      const signed char* src = &map.Cells()[static_cast<std::size_t>(j) * w];
-      char* dst = contents.data() + offset + static_cast<std::size_t>(map.Height() - 1 - j) * w;
-      for (std::size_t i = 0; i < w; ++i) {
-        dst[i] = static_cast<char>(TrinaryPixel(src[i]));
+    return WriteFileAtomically(path, [&](std::FILE* f) {
+      const auto w = static_cast<std::size_t>(map.Width());
+      std::vector<char> row(w);
+      bool ok = std::fputs(header, f) >= 0;
+      for (int j = map.Height() - 1; ok && j >= 0; --j) {
+        const signed char* src = &map.Cells()[static_cast<std::size_t>(j) * w];
+        for (std::size_t i = 0; i < w; ++i) {
+          row[i] = static_cast<char>(TrinaryPixel(src[i]));
+        }
+        ok = std::fwrite(row.data(), 1, w, f) == w;
       }
-    }
-    return WriteFileAtomically(path, contents);
+      return ok;
+    });
   }
   std::vector<std::uint8_t> cells(map.size());
   for (std::size_t k = 0; k < cells.size(); ++k) {

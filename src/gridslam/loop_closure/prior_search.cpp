@@ -1,9 +1,12 @@
 #include "gridslam/loop_closure/prior_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "gridslam/common/thread_scratch.hpp"
 
 namespace gridslam::loop_closure {
 
@@ -94,11 +97,27 @@ int PoolLevels(int side) {
 // them, in the same order of summation: the best score is the same number.
 class BranchAndBound {
  public:
+  /// The buffers of a search, kept per thread from search to search (thread_scratch.hpp): a
+  /// search writes every value it reads.
+  struct Buffers {
+    std::vector<float> score;
+    std::vector<float> rows;
+    std::vector<float> base;
+    std::vector<std::vector<float>> pools;
+    std::vector<int> cell_i;
+    std::vector<int> cell_j;
+  };
+
   BranchAndBound(const Grid2D<float>& distance_a, const Pose2& prior, const SearchLattice& lattice,
                  const PriorSearchOptions& options)
       : lattice_(lattice),
         width_(distance_a.Limits().Width()),
-        height_(distance_a.Limits().Height()) {
+        height_(distance_a.Limits().Height()),
+        buffers_(ThreadScratch<Buffers, Buffers>()),
+        score_(buffers_.score),
+        pools_(buffers_.pools),
+        cell_i_(buffers_.cell_i),
+        cell_j_(buffers_.cell_j) {
     const MapLimits& limits = distance_a.Limits();
     const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
     const float* field = distance_a.data();
@@ -145,7 +164,7 @@ class BranchAndBound {
     for (Node& root : roots) {
       root.bound = Bound(root, scored);
     }
-    Descend(roots, &best, scored);
+    Descend(roots.data(), roots.data() + roots.size(), &best, scored);
     return best;
   }
 
@@ -167,8 +186,10 @@ class BranchAndBound {
              static_cast<std::size_t>(i);
     };
     // Base: the square of one step.
-    std::vector<float> rows(score_.size());
-    std::vector<float> base(score_.size());
+    std::vector<float>& rows = buffers_.rows;
+    std::vector<float>& base = buffers_.base;
+    rows.resize(score_.size());
+    base.resize(score_.size());
     for (int j = 0; j < h; ++j) {
       for (int i = 0; i < w; ++i) {
         float m = 0.0F;
@@ -187,11 +208,14 @@ class BranchAndBound {
         base[at(i, j)] = m;
       }
     }
+    if (pools_.size() < static_cast<std::size_t>(levels_)) {
+      pools_.resize(static_cast<std::size_t>(levels_));
+    }
     const std::vector<float>* previous = &base;
-    pools_.reserve(static_cast<std::size_t>(levels_));
     for (int level = 1; level <= levels_; ++level) {
       const int shift = (1 << (level - 1)) * lattice_.step;
-      std::vector<float> pool(score_.size());
+      std::vector<float>& pool = pools_[static_cast<std::size_t>(level - 1)];
+      pool.resize(score_.size());
       for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
           float m = (*previous)[at(i, j)];
@@ -207,8 +231,7 @@ class BranchAndBound {
           pool[at(i, j)] = m;
         }
       }
-      pools_.push_back(std::move(pool));
-      previous = &pools_.back();
+      previous = &pool;
     }
   }
 
@@ -259,31 +282,32 @@ class BranchAndBound {
            exclusion_.Contains(node.u0 + last, node.v0 + last);
   }
 
-  void Descend(std::vector<Node>& nodes, Best* best, long* scored) {
-    std::sort(nodes.begin(), nodes.end(),
-              [](const Node& x, const Node& y) { return x.bound > y.bound; });
-    for (const Node& node : nodes) {
-      if (node.bound <= best->score) {
+  // Visits the nodes [begin, end) best bound first (children on the stack: no allocation).
+  void Descend(Node* begin, Node* end, Best* best, long* scored) {
+    std::sort(begin, end, [](const Node& x, const Node& y) { return x.bound > y.bound; });
+    for (const Node* node = begin; node != end; ++node) {
+      if (node->bound <= best->score) {
         return;  // sorted: no later node can beat it either
       }
-      if (node.level == 0) {
-        *best = Best{node.bound, node.a, node.u0, node.v0, true};
+      if (node->level == 0) {
+        *best = Best{node->bound, node->a, node->u0, node->v0, true};
         continue;
       }
-      std::vector<Node> children;
-      const int half_size = 1 << (node.level - 1);
+      std::array<Node, 4> children{};
+      int count = 0;
+      const int half_size = 1 << (node->level - 1);
       for (int dv = 0; dv < 2; ++dv) {
         for (int du = 0; du < 2; ++du) {
-          Node child{node.a, node.level - 1, node.u0 + du * half_size, node.v0 + dv * half_size,
+          Node child{node->a, node->level - 1, node->u0 + du * half_size, node->v0 + dv * half_size,
                      0.0F};
           if (child.u0 >= lattice_.side || child.v0 >= lattice_.side || Excluded(child)) {
             continue;
           }
           child.bound = Bound(child, scored);
-          children.push_back(child);
+          children[static_cast<std::size_t>(count++)] = child;
         }
       }
-      Descend(children, best, scored);
+      Descend(children.data(), children.data() + count, best, scored);
     }
   }
 
@@ -291,10 +315,11 @@ class BranchAndBound {
   int width_;
   int height_;
   int levels_ = 0;
-  std::vector<float> score_;
-  std::vector<std::vector<float>> pools_;
-  std::vector<int> cell_i_;
-  std::vector<int> cell_j_;
+  Buffers& buffers_;
+  std::vector<float>& score_;
+  std::vector<std::vector<float>>& pools_;  ///< Levels 1..levels_ (more may be held, unused).
+  std::vector<int>& cell_i_;
+  std::vector<int>& cell_j_;
   Exclusion exclusion_;
 };
 

@@ -206,11 +206,11 @@ void GridRow(const TiledGrid<float>& grid, int j, int width, float outside, floa
 /// `occupancy_row(j, cells, scratch)` writes the occupancy of map row j into cells[0, width)
 /// (scratch: `width` floats of its own). Rows are cut into `threads` parts.
 template <class OccupancyRow>
-cv::Mat Render(const MapLimits& limits, OccupancyRow occupancy_row, const TiledGrid<float>& share,
-               int threads) {
+void Render(const MapLimits& limits, OccupancyRow occupancy_row, const TiledGrid<float>& share,
+            int threads, cv::Mat& image) {
   const int width = limits.Width();
   const int height = limits.Height();
-  cv::Mat image(height, width, CV_8UC3);
+  image.create(height, width, CV_8UC3);
   const auto render = [&](std::size_t begin, std::size_t end) {
     std::vector<signed char> cells(static_cast<std::size_t>(width));
     std::vector<float> shares(static_cast<std::size_t>(width));
@@ -239,26 +239,27 @@ cv::Mat Render(const MapLimits& limits, OccupancyRow occupancy_row, const TiledG
   const auto rows = static_cast<std::size_t>(height);
   RunParts(rows, PartCount(rows, threads),
            [&](std::size_t /*part*/, std::size_t begin, std::size_t end) { render(begin, end); });
-  return image;
 }
 
 }  // namespace
 
 cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& share, int threads) {
-  return Render(
+  cv::Mat image;
+  Render(
       map.Limits(),
       [&](int j, signed char* cells, float* /*scratch*/) {
         const signed char* row = &map.Cells()[static_cast<std::size_t>(j) * map.Width()];
         std::copy(row, row + map.Width(), cells);
       },
-      share, threads);
+      share, threads, image);
+  return image;
 }
 
-cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
-                           const TiledGrid<float>& share, int threads) {
+void RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                        const TiledGrid<float>& share, int threads, cv::Mat& image) {
   const auto occupied = static_cast<float>(ProbabilityToLogOdds(fusion.occupied_probability));
   const auto free = static_cast<float>(ProbabilityToLogOdds(fusion.free_probability));
-  return Render(
+  Render(
       log_odds.Limits(),
       [&](int j, signed char* cells, float* values) {
         GridRow(log_odds, j, log_odds.Width(), log_odds.Fill(), values);
@@ -267,7 +268,14 @@ cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::Fusio
           cells[i] = l > occupied ? kOccupiedCell : (l < free ? kFreeCell : kUnknownCell);
         }
       },
-      share, threads);
+      share, threads, image);
+}
+
+cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                           const TiledGrid<float>& share, int threads) {
+  cv::Mat image;
+  RenderQualityImage(log_odds, fusion, share, threads, image);
+  return image;
 }
 
 }  // namespace gridslam::quality

@@ -28,5 +28,9 @@ cv::Mat RenderQualityImage(const OccupancyImage& map, const TiledGrid<float>& sh
 /// holding the occupancy image).
 cv::Mat RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
                            const TiledGrid<float>& share, int threads = 1);
+/// The same into `image`, whose pixels are reused when it already has the map's size and type
+/// CV_8UC3 (a header over a caller's buffer stays on it).
+void RenderQualityImage(const TiledGrid<float>& log_odds, const fusion::FusionOptions& fusion,
+                        const TiledGrid<float>& share, int threads, cv::Mat& image);
 
 }  // namespace gridslam::quality
