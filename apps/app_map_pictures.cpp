@@ -49,13 +49,13 @@ Canvas MakeCanvas(const OccupancyImage& map, int channels, ImageBuffer& pictures
                                kMarginLeft + limits.Width() + kMarginRight, CV_8UC(channels)),
                 limits};
   canvas.image.setTo(cv::Scalar::all(255));
+  const auto grey = [](signed char v) -> std::uint8_t {
+    return v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
+  };
   for (int j = 0; j < limits.Height(); ++j) {
     std::uint8_t* row = canvas.image.ptr<std::uint8_t>(kMarginTop + limits.Height() - 1 - j) +
                         kMarginLeft * channels;
     const signed char* cells = &map.Cells()[static_cast<std::size_t>(j) * limits.Width()];
-    const auto grey = [](signed char v) -> std::uint8_t {
-      return v == kOccupiedCell ? 0 : (v == kFreeCell ? 255 : 205);
-    };
     if (channels == 1) {
       std::transform(cells, cells + limits.Width(), row, grey);
       continue;

@@ -109,6 +109,25 @@ class TiledGrid {
     return NumAllocatedTiles() * kTileCells * sizeof(T) + tiles_.size() * sizeof(tiles_[0]);
   }
 
+  /// Cells [i_begin, i_end) of row j (all inside the grid) into out[0, i_end - i_begin), a
+  /// tile's run at a time; the fill where a tile was never written.
+  void CopyRow(int j, int i_begin, int i_end, T* out) const {
+    const int tj = j >> kTileBits;
+    const std::size_t row = static_cast<std::size_t>(j & (kTileSize - 1)) * kTileSize;
+    for (int i = i_begin; i < i_end;) {
+      const int run = std::min(i_end - i, kTileSize - (i & (kTileSize - 1)));
+      const T* tile = Tile(i >> kTileBits, tj);
+      T* to = out + (i - i_begin);
+      if (tile == nullptr) {
+        std::fill(to, to + run, fill_);
+      } else {
+        const T* from = tile + row + static_cast<std::size_t>(i & (kTileSize - 1));
+        std::copy(from, from + run, to);
+      }
+      i += run;
+    }
+  }
+
   /// The same cells as a dense grid (for small maps and tests).
   [[nodiscard]] Grid2D<T> ToDense() const {
     Grid2D<T> dense(limits_, fill_);

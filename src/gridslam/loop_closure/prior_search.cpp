@@ -113,32 +113,31 @@ class BranchAndBound {
       : lattice_(lattice),
         width_(distance_a.Limits().Width()),
         height_(distance_a.Limits().Height()),
-        buffers_(ThreadScratch<Buffers, Buffers>()),
-        score_(buffers_.score),
-        pools_(buffers_.pools),
-        cell_i_(buffers_.cell_i),
-        cell_j_(buffers_.cell_j) {
+        buffers_(ThreadScratch<Buffers, Buffers>()) {
     const MapLimits& limits = distance_a.Limits();
     const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
     const float* field = distance_a.data();
     const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
-    score_.resize(cells);
+    buffers_.score.resize(cells);
     for (std::size_t c = 0; c < cells; ++c) {
-      score_[c] = field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
+      buffers_.score[c] =
+          field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
     }
     levels_ = PoolLevels(lattice.side);
     BuildPools();
     const std::size_t n = lattice.points.size();
-    cell_i_.resize(static_cast<std::size_t>(lattice.angles) * n);
-    cell_j_.resize(cell_i_.size());
+    buffers_.cell_i.resize(static_cast<std::size_t>(lattice.angles) * n);
+    buffers_.cell_j.resize(buffers_.cell_i.size());
     for (int a = 0; a < lattice.angles; ++a) {
       const double dtheta = (a - lattice.angles / 2) * options.angular_step;
       const PointTransform T(prior * Pose2(0.0, 0.0, dtheta));
       for (std::size_t k = 0; k < n; ++k) {
         const Eigen::Vector2d c = limits.ToCellCoordinates(T(lattice.points[k]));
         // The cell of the lattice's first translation (offset -half steps on both axes).
-        cell_i_[a * n + k] = static_cast<int>(std::floor(c.x())) - lattice.half * lattice.step;
-        cell_j_[a * n + k] = static_cast<int>(std::floor(c.y())) - lattice.half * lattice.step;
+        buffers_.cell_i[a * n + k] =
+            static_cast<int>(std::floor(c.x())) - lattice.half * lattice.step;
+        buffers_.cell_j[a * n + k] =
+            static_cast<int>(std::floor(c.y())) - lattice.half * lattice.step;
       }
     }
   }
@@ -177,7 +176,8 @@ class BranchAndBound {
     float bound;
   };
 
-  // pools_[L - 1](i, j) = the largest score over cells [i, i + 2^L step) x [j, j + 2^L step).
+  // buffers_.pools[L - 1](i, j) = the largest score over cells [i, i + 2^L step) x [j, j + 2^L
+  // step).
   void BuildPools() {
     const int w = width_;
     const int h = height_;
@@ -188,13 +188,13 @@ class BranchAndBound {
     // Base: the square of one step.
     std::vector<float>& rows = buffers_.rows;
     std::vector<float>& base = buffers_.base;
-    rows.resize(score_.size());
-    base.resize(score_.size());
+    rows.resize(buffers_.score.size());
+    base.resize(buffers_.score.size());
     for (int j = 0; j < h; ++j) {
       for (int i = 0; i < w; ++i) {
         float m = 0.0F;
         for (int d = 0; d < lattice_.step && i + d < w; ++d) {
-          m = std::max(m, score_[at(i + d, j)]);
+          m = std::max(m, buffers_.score[at(i + d, j)]);
         }
         rows[at(i, j)] = m;
       }
@@ -208,14 +208,14 @@ class BranchAndBound {
         base[at(i, j)] = m;
       }
     }
-    if (pools_.size() < static_cast<std::size_t>(levels_)) {
-      pools_.resize(static_cast<std::size_t>(levels_));
+    if (buffers_.pools.size() < static_cast<std::size_t>(levels_)) {
+      buffers_.pools.resize(static_cast<std::size_t>(levels_));
     }
     const std::vector<float>* previous = &base;
     for (int level = 1; level <= levels_; ++level) {
       const int shift = (1 << (level - 1)) * lattice_.step;
-      std::vector<float>& pool = pools_[static_cast<std::size_t>(level - 1)];
-      pool.resize(score_.size());
+      std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(level - 1)];
+      pool.resize(buffers_.score.size());
       for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
           float m = (*previous)[at(i, j)];
@@ -239,8 +239,8 @@ class BranchAndBound {
   float Bound(const Node& node, long* scored) const {
     ++*scored;
     const std::size_t n = lattice_.points.size();
-    const int* ci = cell_i_.data() + static_cast<std::size_t>(node.a) * n;
-    const int* cj = cell_j_.data() + static_cast<std::size_t>(node.a) * n;
+    const int* ci = buffers_.cell_i.data() + static_cast<std::size_t>(node.a) * n;
+    const int* cj = buffers_.cell_j.data() + static_cast<std::size_t>(node.a) * n;
     const int di = node.u0 * lattice_.step;
     const int dj = node.v0 * lattice_.step;
     const int w = width_;
@@ -251,8 +251,8 @@ class BranchAndBound {
         const int i = ci[k] + di;
         const int j = cj[k] + dj;
         if (i >= 0 && j >= 0 && i < w && j < h) {
-          sum += score_[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                        static_cast<std::size_t>(i)];
+          sum += buffers_.score[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+                                static_cast<std::size_t>(i)];
         }
       }
       return sum;
@@ -260,7 +260,7 @@ class BranchAndBound {
     // The block moves a point over cells [i, i + 2^level step); a start left of (below) the
     // grid is clipped to its first cell, whose pool covers the rest of the span.
     const int span = (1 << node.level) * lattice_.step;
-    const std::vector<float>& pool = pools_[static_cast<std::size_t>(node.level - 1)];
+    const std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(node.level - 1)];
     for (std::size_t k = 0; k < n; ++k) {
       const int i = ci[k] + di;
       const int j = cj[k] + dj;
@@ -315,11 +315,7 @@ class BranchAndBound {
   int width_;
   int height_;
   int levels_ = 0;
-  Buffers& buffers_;
-  std::vector<float>& score_;
-  std::vector<std::vector<float>>& pools_;  ///< Levels 1..levels_ (more may be held, unused).
-  std::vector<int>& cell_i_;
-  std::vector<int>& cell_j_;
+  Buffers& buffers_;  ///< pools: levels 1..levels_ (more may be held, unused).
   Exclusion exclusion_;
 };
 

@@ -15,32 +15,19 @@ namespace {
 
 constexpr int kTile = TiledGrid<float>::kTileSize;
 
-/// The cells [i0, i0 + n) of row j of `grid`, reflected at the grid's edges (BORDER_REFLECT_101):
-/// the cells inside the grid copied a tile's run at a time.
+/// The cells [i0, i0 + n) of row j of `grid`, reflected at the grid's edges (BORDER_REFLECT_101).
 void ReflectedRow(const TiledGrid<float>& grid, int i0, int n, int j, float* out) {
   const int width = grid.Width();
   const int jj = cv::borderInterpolate(j, grid.Height(), cv::BORDER_REFLECT_101);
-  const int tj = jj >> TiledGrid<float>::kTileBits;
-  const std::size_t row = static_cast<std::size_t>(jj & (kTile - 1)) * kTile;
-  int m = 0;
-  while (m < n) {
+  const int begin = std::clamp(i0, 0, width);
+  const int end = std::clamp(i0 + n, begin, width);
+  for (int m = 0; m < n; ++m) {
     const int i = i0 + m;
-    if (i < 0 || i >= width) {
+    if (i < begin || i >= end) {
       out[m] = grid.Get(cv::borderInterpolate(i, width, cv::BORDER_REFLECT_101), jj);
-      ++m;
-      continue;
     }
-    const int ti = i >> TiledGrid<float>::kTileBits;
-    const int run = std::min({n - m, (ti + 1) * kTile - i, width - i});
-    const float* tile = grid.Tile(ti, tj);
-    if (tile == nullptr) {
-      std::fill(out + m, out + m + run, grid.Fill());
-    } else {
-      const float* from = tile + row + static_cast<std::size_t>(i & (kTile - 1));
-      std::copy(from, from + run, out + m);
-    }
-    m += run;
   }
+  grid.CopyRow(jj, begin, end, out + (begin - i0));
 }
 
 }  // namespace
@@ -181,25 +168,10 @@ TiledGrid<float> DisagreementShare(const SelfCheckResult& result, const SelfChec
 
 namespace {
 
-/// Row j of `grid` over cells [0, width) (`outside` beyond the grid's limits), a tile's run at a
-/// time.
+/// Row j of `grid` over cells [0, width) (`outside` beyond the grid's limits).
 void GridRow(const TiledGrid<float>& grid, int j, int width, float outside, float* out) {
-  if (j < 0 || j >= grid.Height()) {
-    std::fill(out, out + width, outside);
-    return;
-  }
-  const int inside = std::min(width, grid.Width());
-  const int tj = j >> TiledGrid<float>::kTileBits;
-  const std::size_t row = static_cast<std::size_t>(j & (kTile - 1)) * kTile;
-  for (int i0 = 0; i0 < inside; i0 += kTile) {
-    const int run = std::min(kTile, inside - i0);
-    const float* tile = grid.Tile(i0 >> TiledGrid<float>::kTileBits, tj);
-    if (tile == nullptr) {
-      std::fill(out + i0, out + i0 + run, grid.Fill());
-    } else {
-      std::copy(tile + row, tile + row + run, out + i0);
-    }
-  }
+  const int inside = j >= 0 && j < grid.Height() ? std::min(width, grid.Width()) : 0;
+  grid.CopyRow(j, 0, inside, out);
   std::fill(out + inside, out + width, outside);
 }
 
