@@ -59,4 +59,12 @@ class AppearanceIndex {
   std::vector<std::unique_ptr<Block>> blocks_;
 };
 
+/// The `kk` nearest rows of `stored` for every row of `queries` (both CV_32F, the same columns,
+/// kk <= stored.rows) by squared L2 distance: `dists` (CV_32F) and `indices` (CV_32S), one row
+/// per query, nearest first. The same distances, order and ties as cv::batchDistance(queries,
+/// stored, dists, CV_32F, indices, NORM_L2SQR, kk), computed only for the rows that can enter the
+/// list (partial sums skip the others), on the calling thread.
+void NearestByPartialSums(const cv::Mat& queries, const cv::Mat& stored, int kk, cv::Mat* dists,
+                          cv::Mat* indices);
+
 }  // namespace gridslam::loop_closure
