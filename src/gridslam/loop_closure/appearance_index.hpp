@@ -5,9 +5,9 @@
 // several overlapping key maps), and the most-voted key maps are returned for alignment and
 // verification. Float
 // descriptors are indexed in blocks of key maps with randomized k-d trees (FLANN, as the authors'
-// matcher); the newest, not yet full block is searched by brute force. Binary descriptors (ORB,
-// AKAZE: CV_8U rows) are searched by brute force with Hamming distances. This is what lets robots
-// with unknown relative starts find each other, and a lost robot relocalize.
+// matcher); the newest, not yet full block is searched exactly (NearestByPartialSums). Binary
+// descriptors (ORB, AKAZE: CV_8U rows) are searched by brute force with Hamming distances. This is
+// what lets robots with unknown relative starts find each other, and a lost robot relocalize.
 #pragma once
 
 #include <functional>
