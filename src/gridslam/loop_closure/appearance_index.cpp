@@ -1,15 +1,11 @@
 #include "gridslam/loop_closure/appearance_index.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <map>
 #include <utility>
 
 #include <opencv2/core.hpp>
-#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/flann.hpp>
-
-#include "gridslam/common/check.hpp"
 
 namespace gridslam::loop_closure {
 
@@ -38,54 +34,6 @@ bool Indexable(const cv::Mat& descriptors) {
 }
 
 }  // namespace
-
-// A stored row is dropped as soon as its partial sum over the first 16, 32, ... dimensions reaches
-// the query's current kk-th distance: the whole sum is no smaller, so the row could not enter the
-// list. The margin covers the rounding of the partial sum against the kernel's (relative 1e-4,
-// against 64 float additions' 4e-6).
-void NearestByPartialSums(const cv::Mat& queries, const cv::Mat& stored, int kk, cv::Mat* dists,
-                          cv::Mat* indices) {
-  constexpr int kChunk = 16;
-  constexpr float kMargin = 1.0F - 1e-4F;
-  GRIDSLAM_CHECK(queries.type() == CV_32F && stored.type() == CV_32F &&
-                 queries.cols == stored.cols && kk >= 1 && kk <= stored.rows);
-  const int dims = queries.cols;
-  dists->create(queries.rows, kk, CV_32F);
-  indices->create(queries.rows, kk, CV_32S);
-  dists->setTo(std::numeric_limits<float>::max());
-  indices->setTo(-1);
-  for (int q = 0; q < queries.rows; ++q) {
-    const float* a = queries.ptr<float>(q);
-    float* dist = dists->ptr<float>(q);
-    int* index = indices->ptr<int>(q);
-    for (int j = 0; j < stored.rows; ++j) {
-      const float* b = stored.ptr<float>(j);
-      float partial = 0.0F;
-      bool beyond = false;
-      for (int begin = 0; begin < dims && !beyond; begin += kChunk) {
-        const int end = std::min(dims, begin + kChunk);
-        for (int i = begin; i < end; ++i) {
-          const float v = a[i] - b[i];
-          partial += v * v;
-        }
-        beyond = partial * kMargin >= dist[kk - 1];
-      }
-      if (beyond) {
-        continue;
-      }
-      const float d = cv::hal::normL2Sqr_(a, b, dims);
-      if (d < dist[kk - 1]) {  // cv::batchDistance's insertion: ties keep the earlier row
-        int k = kk - 2;
-        for (; k >= 0 && dist[k] > d; --k) {
-          dist[k + 1] = dist[k];
-          index[k + 1] = index[k];
-        }
-        dist[k + 1] = d;
-        index[k + 1] = j;
-      }
-    }
-  }
-}
 
 void AppearanceIndex::Add(int node, const cv::Mat& descriptors) {
   if (!Indexable(descriptors) || (type_ >= 0 && descriptors.type() != type_)) {
@@ -148,7 +96,8 @@ std::vector<AppearanceVote> AppearanceIndex::Query(const cv::Mat& descriptors, i
       hamming.convertTo(dists, CV_32F);
       dists = dists.mul(dists);
     } else {
-      NearestByPartialSums(descriptors, block->descriptors, kk, &dists, &indices);
+      cv::batchDistance(descriptors, block->descriptors, dists, CV_32F, indices, cv::NORM_L2SQR,
+                        kk);
     }
     for (int q = 0; q < n; ++q) {
       auto& list = nearest[static_cast<std::size_t>(q)];

@@ -5,9 +5,9 @@
 // several overlapping key maps), and the most-voted key maps are returned for alignment and
 // verification. Float
 // descriptors are indexed in blocks of key maps with randomized k-d trees (FLANN, as the authors'
-// matcher); the newest, not yet full block is searched exactly (NearestByPartialSums). Binary
-// descriptors (ORB, AKAZE: CV_8U rows) are searched by brute force with Hamming distances. This is
-// what lets robots with unknown relative starts find each other, and a lost robot relocalize.
+// matcher); the newest, not yet full block is searched by brute force. Binary descriptors (ORB,
+// AKAZE: CV_8U rows) are searched by brute force with Hamming distances. This is what lets robots
+// with unknown relative starts find each other, and a lost robot relocalize.
 #pragma once
 
 #include <functional>
@@ -58,13 +58,5 @@ class AppearanceIndex {
   std::shared_ptr<cv::RNG> random_state_;
   std::vector<std::unique_ptr<Block>> blocks_;
 };
-
-/// The `kk` nearest rows of `stored` for every row of `queries` (both CV_32F, the same columns,
-/// kk <= stored.rows) by squared L2 distance: `dists` (CV_32F) and `indices` (CV_32S), one row
-/// per query, nearest first. The same distances, order and ties as cv::batchDistance(queries,
-/// stored, dists, CV_32F, indices, NORM_L2SQR, kk), computed only for the rows that can enter the
-/// list (partial sums skip the others), on the calling thread.
-void NearestByPartialSums(const cv::Mat& queries, const cv::Mat& stored, int kk, cv::Mat* dists,
-                          cv::Mat* indices);
 
 }  // namespace gridslam::loop_closure

@@ -128,43 +128,5 @@ TEST(AppearanceIndex, TreesDoNotDependOnTheThreadOrOnOtherRandomNumbers) {
   EXPECT_EQ(there, here);
 }
 
-// The tail block's search skips distances by partial sums; it must give what the brute force
-// it replaced gave, to the bit: the same neighbours, distances, order and ties. SURF-like rows
-// (unit length), exact duplicates (ties) and queries equal to stored rows (distance 0) included.
-TEST(AppearanceIndex, PartialSumSearchEqualsOpenCvBruteForce) {
-  std::mt19937 rng(5);
-  cv::Mat stored = RandomDescriptors(rng, 700);
-  for (int r = 0; r < stored.rows; ++r) {
-    cv::normalize(stored.row(r), stored.row(r));
-  }
-  for (int r = 0; r < 40; ++r) {
-    stored.row(3 * r).copyTo(stored.row(3 * r + 1));  // duplicates: ties to keep in order
-  }
-  cv::Mat queries = stored.rowRange(0, 60).clone();  // some at distance 0, some with a twin
-  cv::Mat near = stored.rowRange(100, 160).clone() + RandomDescriptors(rng, 60) * 0.02;
-  queries.push_back(near);
-  cv::Mat far = RandomDescriptors(rng, 60);
-  for (int r = 0; r < far.rows; ++r) {
-    cv::normalize(far.row(r), far.row(r));
-  }
-  queries.push_back(far);
-  for (const int kk : {1, 2, 5}) {
-    cv::Mat expected_dists;
-    cv::Mat expected_indices;
-    cv::batchDistance(queries, stored, expected_dists, CV_32F, expected_indices, cv::NORM_L2SQR,
-                      kk);
-    cv::Mat dists;
-    cv::Mat indices;
-    NearestByPartialSums(queries, stored, kk, &dists, &indices);
-    ASSERT_EQ(dists.size(), expected_dists.size());
-    for (int q = 0; q < queries.rows; ++q) {
-      for (int c = 0; c < kk; ++c) {
-        ASSERT_EQ(indices.at<int>(q, c), expected_indices.at<int>(q, c)) << q << " " << c;
-        ASSERT_EQ(dists.at<float>(q, c), expected_dists.at<float>(q, c)) << q << " " << c;
-      }
-    }
-  }
-}
-
 }  // namespace
 }  // namespace gridslam::loop_closure
