@@ -57,6 +57,19 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"cpu_worker", s.cpu_seconds_worker}}}};
 }
 
+namespace {
+
+nlohmann::json MountingJson(const scan_matching::MountingResult& m) {
+  nlohmann::json j = {{"increments", m.frames}, {"measured", m.ok}};
+  if (m.ok) {
+    j["offset_m"] = {m.offset.x(), m.offset.y()};
+    j["sigma_m"] = {m.sigma.x(), m.sigma.y()};
+  }
+  return j;
+}
+
+}  // namespace
+
 nlohmann::json MapReport(const pipeline::MapperResult& result,
                          const std::vector<RobotOutput>& robots) {
   nlohmann::json report = StatsJson(result.stats);
@@ -69,6 +82,9 @@ nlohmann::json MapReport(const pipeline::MapperResult& result,
                     {"duration_s", robots[r].duration},
                     {"skipped_malformed_lines", robots[r].skipped_malformed},
                     {"repaired_timestamps", robots[r].repaired_timestamps}});
+    if (r < result.mountings.size()) {
+      logs.back()["laser_mounting"] = MountingJson(result.mountings[r]);
+    }
   }
   report["logs"] = logs;
   nlohmann::json joins = nlohmann::json::array();

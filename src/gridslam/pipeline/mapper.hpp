@@ -31,6 +31,7 @@
 #include "gridslam/pipeline/mapper_records.hpp"
 #include "gridslam/pose_graph/pose_graph.hpp"
 #include "gridslam/scan/laser_scan.hpp"
+#include "gridslam/scan_matching/mounting_estimate.hpp"
 
 namespace gridslam::pipeline {
 
@@ -112,6 +113,10 @@ struct MapperResult {
   /// Fused log-odds grid per map component (index = component value of component_of_robot),
   /// tiled: only the tiles the scans touched hold memory.
   std::vector<TiledGrid<float>> maps;
+  /// Per robot: where its laser sits beyond the mounting the front end used, as the data
+  /// measure it (scan_matching/mounting_estimate.hpp). Reported only; the mapping used the given
+  /// mounting.
+  std::vector<scan_matching::MountingResult> mountings;
   MapperStats stats;
 };
 

@@ -95,6 +95,7 @@ MapperResult Mapper::Impl::Finish() {
   for (std::size_t r = 0; r < robots.size(); ++r) {
     result.trajectories.push_back(
         CorrectedTrajectory(static_cast<int>(r), options.graph.interpolate_corrections));
+    result.mountings.push_back(robots[r].mounting.Estimate());
   }
   result.graph = graph.ActiveGraph();
   for (const KeyMapNode& node : graph.nodes()) {
