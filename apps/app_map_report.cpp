@@ -60,7 +60,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
 namespace {
 
 nlohmann::json MountingJson(const scan_matching::MountingResult& m) {
-  nlohmann::json j = {{"increments", m.frames}, {"measured", m.ok}};
+  nlohmann::json j = {{"increments", m.increments}, {"measured", m.ok}};
   if (m.ok) {
     j["offset_m"] = {m.offset.x(), m.offset.y()};
     j["sigma_m"] = {m.sigma.x(), m.sigma.y()};

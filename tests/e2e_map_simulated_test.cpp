@@ -102,7 +102,7 @@ TEST(SimulatedMounting, TheScansMeasureWhereTheLaserSits) {
   const scan_matching::MountingResult lost = measure(false);
   std::printf("mounting given: %.4f %.4f (+-%.4f); lost: %.4f %.4f (+-%.4f), %d increments\n",
               given.offset.x(), given.offset.y(), given.sigma.x(), lost.offset.x(), lost.offset.y(),
-              lost.sigma.x(), lost.frames);
+              lost.sigma.x(), lost.increments);
   ASSERT_TRUE(given.ok);
   ASSERT_TRUE(lost.ok);
   EXPECT_LT(given.offset.norm(), 0.02);

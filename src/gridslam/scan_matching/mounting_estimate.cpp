@@ -38,10 +38,10 @@ void MountingEstimate::Add(const Pose2& odometry_increment, const Pose2& matched
                       matched_increment.translation() - odometry_increment.translation()});
 }
 
-MountingResult MountingEstimate::Estimate(int min_frames) const {
+MountingResult MountingEstimate::Estimate(int min_increments) const {
   MountingResult result;
-  result.frames = size();
-  if (result.frames < std::max(min_frames, 3)) {
+  result.increments = size();
+  if (result.increments < std::max(min_increments, 3)) {
     return result;
   }
   std::vector<double> weights(samples_.size(), 1.0);

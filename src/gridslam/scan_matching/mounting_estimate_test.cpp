@@ -36,7 +36,7 @@ TEST(MountingEstimate, FindsALaserAheadOfTheCentreDespiteOutliers) {
   const Eigen::Vector2d truth(0.22, -0.03);
   const MountingResult result = Feed(truth, 2000, 0.005, 0.1).Estimate();
   ASSERT_TRUE(result.ok);
-  EXPECT_EQ(result.frames, 2000);
+  EXPECT_EQ(result.increments, 2000);
   EXPECT_NEAR(result.offset.x(), truth.x(), 0.01);
   EXPECT_NEAR(result.offset.y(), truth.y(), 0.01);
   // The standard deviations describe the error: small, and not far below it.
@@ -56,8 +56,8 @@ TEST(MountingEstimate, NeedsTurnsAndEnoughIncrements) {
   EXPECT_FALSE(Feed(Eigen::Vector2d(0.2, 0.0), 500, 0.005, 0.0, /*turns=*/false).Estimate().ok);
   const MountingEstimate few = Feed(Eigen::Vector2d(0.2, 0.0), 20, 0.005, 0.0);
   EXPECT_FALSE(few.Estimate().ok);
-  EXPECT_EQ(few.Estimate().frames, 20);
-  EXPECT_TRUE(few.Estimate(/*min_frames=*/10).ok);
+  EXPECT_EQ(few.Estimate().increments, 20);
+  EXPECT_TRUE(few.Estimate(/*min_increments=*/10).ok);
   EXPECT_FALSE(MountingEstimate().Estimate().ok);
 }
 
