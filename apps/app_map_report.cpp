@@ -2,6 +2,8 @@
 
 #include "gridslam/common/time.hpp"
 
+#include "app_mounting_report.hpp"
+
 namespace gridslam::app {
 
 nlohmann::json StatsJson(const pipeline::MapperStats& s) {
@@ -56,19 +58,6 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"fusion", s.seconds_fusion},
         {"cpu_worker", s.cpu_seconds_worker}}}};
 }
-
-namespace {
-
-nlohmann::json MountingJson(const scan_matching::MountingResult& m) {
-  nlohmann::json j = {{"increments", m.increments}, {"measured", m.ok}};
-  if (m.ok) {
-    j["offset_m"] = {m.offset.x(), m.offset.y()};
-    j["sigma_m"] = {m.sigma.x(), m.sigma.y()};
-  }
-  return j;
-}
-
-}  // namespace
 
 nlohmann::json MapReport(const pipeline::MapperResult& result,
                          const std::vector<RobotOutput>& robots) {

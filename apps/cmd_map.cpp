@@ -22,6 +22,7 @@
 #include "app_align_map.hpp"
 #include "app_map_session.hpp"
 #include "app_memory.hpp"
+#include "app_mounting_report.hpp"
 #include "app_output_dir.hpp"
 #include "command.hpp"
 #include <time.h>
@@ -264,19 +265,11 @@ int RunMap(const MapArgs& args, AppContext& context) {
                  "scan matching (glitches?)\n",
                  s.odometry_overruled);
   }
-  // Where the data put the laser, when that is clearly (3 standard deviations) more than a map
-  // cell from the mounting used: a log that lost its mounting gives the laser's poses, not the
+  // Where the scans put the laser: a log that lost its mounting gives the laser's poses, not the
   // robot's (docs/frames.md).
-  const double cell = context.options.fusion.resolution;
   for (std::size_t r = 0; r < result.mountings.size(); ++r) {
-    const scan_matching::MountingResult& m = result.mountings[r];
-    if (m.ok && m.offset.norm() > cell && m.offset.norm() > 3.0 * m.sigma.maxCoeff()) {
-      std::fprintf(stderr,
-                   "gridslam map: note: %s: the scans put the laser %.3f m ahead, %.3f m left of "
-                   "the mounting used (+-%.3f m); the trajectory is that of the mounting used. "
-                   "If the log lost its mounting, give --set log.laser_offset=[x,y,theta]\n",
-                   robots[r].log.c_str(), m.offset.x(), m.offset.y(), m.sigma.maxCoeff());
-    }
+    PrintMountingNote("gridslam map", robots[r].log, result.mountings[r],
+                      context.options.fusion.resolution);
   }
   std::fprintf(stderr,
                "gridslam map: %ld scans, %ld key maps, %ld loop closures accepted (%ld verified, "

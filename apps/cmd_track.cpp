@@ -18,6 +18,7 @@
 #include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
 
+#include "app_mounting_report.hpp"
 #include "app_output_dir.hpp"
 #include "command.hpp"
 #include <unistd.h>
@@ -154,6 +155,8 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
                       {"repaired_timestamps", log_stats.repaired_timestamps},
                       {"scans_without_odometry", log_stats.scans_without_odometry},
                       {"skipped_malformed", log_stats.skipped_malformed}};
+  const scan_matching::MountingResult mounting = front_end.Mounting();
+  report["laser_mounting"] = MountingJson(mounting);
   if (const Status s =
           io::WriteFileAtomically((dir / "report.json").string(), report.dump(2) + "\n");
       !s.ok()) {
@@ -163,6 +166,7 @@ int RunTrack(const TrackArgs& args, AppContext& context) {
     return ReportError(s.error());
   }
 
+  PrintMountingNote("gridslam track", args.log, mounting, options.local_map.resolution);
   std::fprintf(stderr,
                "gridslam track: %zu scans, %ld key maps, %ld fallbacks, %ld searches; "
                "%.2f s (read %.2f s, front end %.2f s), %.0fx real time\n",

@@ -96,19 +96,8 @@ void Mapper::Impl::AddFrame(int robot, const Frame& frame) {
   if (state.last_pose.has_value()) {
     state.travel += (step.T_odom_base.translation() - state.last_pose->translation()).norm();
   }
-  // The laser's mounting as the data measure it: increments that the odometry and a good match
-  // constraining every direction agree are the robot's motion.
-  if (frame.has_odometry && state.last_has_odometry && state.last_pose.has_value() &&
-      step.status == scan_matching::FrameStatus::kMatched &&
-      step.odometry == scan_matching::OdometryCheck::kConsistent && !step.odometry_overruled &&
-      step.match.degeneracy.degenerate_directions == 0 &&
-      step.match.score >= options.front_end.matcher.good_score) {
-    state.mounting.Add(Between(state.last_odometry, frame.T_odom_base),
-                       Between(*state.last_pose, step.T_odom_base));
-  }
   state.last_pose = step.T_odom_base;
   state.last_odometry = frame.has_odometry ? frame.T_odom_base : step.T_odom_base;
-  state.last_has_odometry = frame.has_odometry;
   state.last_time = frame.time;
   state.scans.push_back({frame.time, step.T_odom_base, state.travel, -1});
   if (step.inserted || state.fusion_scans.empty()) {

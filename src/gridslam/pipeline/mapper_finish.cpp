@@ -70,6 +70,7 @@ MapperResult Mapper::Impl::Finish() {
       continue;  // finished before
     }
     std::optional<keymap::KeyMap> last = state.front_end->Finish();
+    state.mounting = state.front_end->Mounting();
     if (last.has_value()) {
       SubmitKeyMap(static_cast<int>(r), std::move(*last), state.last_time);
     }
@@ -95,7 +96,7 @@ MapperResult Mapper::Impl::Finish() {
   for (std::size_t r = 0; r < robots.size(); ++r) {
     result.trajectories.push_back(
         CorrectedTrajectory(static_cast<int>(r), options.graph.interpolate_corrections));
-    result.mountings.push_back(robots[r].mounting.Estimate());
+    result.mountings.push_back(robots[r].mounting);
   }
   result.graph = graph.ActiveGraph();
   for (const KeyMapNode& node : graph.nodes()) {

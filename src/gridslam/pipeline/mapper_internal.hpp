@@ -61,10 +61,9 @@ struct RobotState {
   std::optional<Pose2> last_pose;  ///< Front-end pose of the latest frame.
   /// Odometry pose of the latest frame (its front-end pose when the recording has none).
   Pose2 last_odometry;
-  bool last_has_odometry = false;  ///< The latest frame had odometry.
   Time last_time;
-  /// The laser's mounting as the robot's increments measure it (mounting_estimate.hpp).
-  scan_matching::MountingEstimate mounting;
+  /// Where the scans put the laser (FrontEnd::Mounting), kept when the front end is released.
+  scan_matching::MountingResult mounting;
 };
 
 /// A key map's description and the returns of its scans (pure functions of the key map: either

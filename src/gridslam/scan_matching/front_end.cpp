@@ -446,6 +446,13 @@ FrontEndStep FrontEnd::AddFrame(const Frame& frame) {
           odometry_noise_.Add(PriorFreeYawCorrection(step.match, predicted, prior_information),
                               defaults.theta);
         }
+        // The laser's mounting: increments that a trusted odometry and a good match constraining
+        // every direction agree are the robot's motion.
+        if (prediction.check == OdometryCheck::kConsistent && !step.odometry_overruled &&
+            step.match.degeneracy.degenerate_directions == 0 &&
+            step.match.score >= options_.matcher.good_score) {
+          mounting_.Add(prediction.odometry_increment, Between(last_estimate_, pose));
+        }
       } else {
         step.status = FrameStatus::kFallbackRejected;
         step.odometry_overruled = false;

@@ -22,6 +22,7 @@
 #include "gridslam/scan_matching/match_score_monitor.hpp"
 #include "gridslam/scan_matching/matching_field.hpp"
 #include "gridslam/scan_matching/motion_check.hpp"
+#include "gridslam/scan_matching/mounting_estimate.hpp"
 #include "gridslam/scan_matching/odometry_noise.hpp"
 #include "gridslam/scan_matching/scan_matcher.hpp"
 
@@ -106,6 +107,9 @@ class FrontEnd {
   std::optional<keymap::KeyMap> Finish();
 
   [[nodiscard]] const FrontEndStats& Stats() const { return stats_; }
+  /// Where the scans put the laser beyond the mounting the frames gave (mounting_estimate.hpp),
+  /// from the increments so far: reported, never applied.
+  [[nodiscard]] MountingResult Mounting() const { return mounting_.Estimate(); }
   /// The local map the key maps are cut from (null before the first frame).
   [[nodiscard]] const RollingWindow* Window() const { return window_.get(); }
   /// The local map scans are matched against: a larger window than Window() when
@@ -187,6 +191,7 @@ class FrontEnd {
   MatchingField matching_field_;  ///< Of matching_window_, updated when a match uses it.
   keymap::KeyMapBuilder keymaps_;
   OdometryNoiseEstimate odometry_noise_;
+  MountingEstimate mounting_;
   MotionCheck motion_check_;
   MatchScoreMonitor score_monitor_;  ///< Scores of the accepted matches.
   LaserNoiseMonitor laser_noise_;    ///< Whether the wall normals are used.
