@@ -11,7 +11,8 @@
 
 namespace gridslam::app {
 
-/// {"increments", "measured"} and, when measured, "offset_m" [ahead, left] and "sigma_m".
+/// {"increments", "measured"} and, when measured, "offset_m" [ahead, left] and "sigma_m" (either
+/// component).
 nlohmann::json MountingJson(const scan_matching::MountingResult& mounting);
 
 /// Prints a note to stderr when the measured offset exceeds both `cell` [m] (a map cell: less

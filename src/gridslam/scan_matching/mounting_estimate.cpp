@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
-
 namespace gridslam::scan_matching {
 namespace {
 
@@ -15,6 +12,8 @@ constexpr double kTukey = 4.685;
 /// (the Rayleigh distribution's median, sqrt(2 ln 2)).
 constexpr double kRayleighMedian = 1.1774100225154747;
 constexpr int kReweightings = 6;
+/// Summed 2 (1 - cos theta) below which the turns measure nothing (one turn of 0.1 mrad) [-].
+constexpr double kMinInformation = 1e-8;
 
 /// (R(theta) - I), the coefficient of the offset in one increment's translation difference.
 Eigen::Matrix2d Coefficient(double theta) {
@@ -44,29 +43,33 @@ MountingResult MountingEstimate::Estimate(int min_increments) const {
   if (result.increments < std::max(min_increments, 3)) {
     return result;
   }
+  // (R - I)^T (R - I) = 2 (1 - cos theta) I: every increment informs both directions alike, so
+  // the normal equations are a scalar times the identity.
+  std::vector<Eigen::Matrix2d> coefficients;
+  coefficients.reserve(samples_.size());
+  for (const Sample& sample : samples_) {
+    coefficients.push_back(Coefficient(sample.theta));
+  }
   std::vector<double> weights(samples_.size(), 1.0);
   std::vector<double> residuals(samples_.size(), 0.0);
-  Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+  double information = 0.0;
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();
   double scale = 0.0;
   for (int pass = 0; pass <= kReweightings; ++pass) {
-    normal.setZero();
+    information = 0.0;
     Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
     for (std::size_t k = 0; k < samples_.size(); ++k) {
-      const Eigen::Matrix2d a = Coefficient(samples_[k].theta);
-      normal.noalias() += weights[k] * a.transpose() * a;
-      rhs.noalias() += weights[k] * a.transpose() * samples_[k].difference;
+      information += weights[k] * 2.0 * (1.0 - std::cos(samples_[k].theta));
+      rhs.noalias() += weights[k] * coefficients[k].transpose() * samples_[k].difference;
     }
-    const Eigen::LDLT<Eigen::Matrix2d> ldlt(normal);
-    // Singular when no increment turned (the offset is then not observable), or when the
-    // reweighting dropped every turning one.
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-        ldlt.vectorD().minCoeff() <= 1e-12 * std::max(1.0, ldlt.vectorD().maxCoeff())) {
+    // Nothing turned (the offset is then not observable), or the reweighting dropped every
+    // increment that did.
+    if (!(information > kMinInformation)) {
       return result;
     }
-    offset = ldlt.solve(rhs);
+    offset = rhs / information;
     for (std::size_t k = 0; k < samples_.size(); ++k) {
-      residuals[k] = (samples_[k].difference - Coefficient(samples_[k].theta) * offset).norm();
+      residuals[k] = (samples_[k].difference - coefficients[k] * offset).norm();
     }
     scale = Median(residuals) / kRayleighMedian;  // per component
     if (pass == kReweightings || scale <= 0.0) {
@@ -78,13 +81,9 @@ MountingResult MountingEstimate::Estimate(int min_increments) const {
       weights[k] = u < 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
     }
   }
-  const Eigen::Matrix2d covariance = scale * scale * normal.inverse();
-  if (!covariance.allFinite()) {
-    return result;
-  }
   result.offset = offset;
-  result.sigma = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-  result.ok = true;
+  result.sigma = scale / std::sqrt(information);
+  result.ok = std::isfinite(result.sigma) && offset.allFinite();
   return result;
 }
 

@@ -24,10 +24,11 @@ namespace gridslam::scan_matching {
 struct MountingResult {
   /// The laser's position beyond the mounting the front end used, in the robot frame [m].
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();
-  /// Standard deviations of `offset` [m] (robust residual scale through the normal equations).
-  Eigen::Vector2d sigma = Eigen::Vector2d::Constant(-1.0);
+  /// Standard deviation of either component of `offset` [m] (the robust residual scale through
+  /// the normal equations; the turns inform both directions alike); -1 when not measured.
+  double sigma = -1.0;
   int increments = 0;  ///< Increments added (all of them enter the fit, reweighted).
-  bool ok = false;     ///< The increments turned enough to measure the offset in both directions.
+  bool ok = false;     ///< The increments turned enough to measure the offset.
 };
 
 class MountingEstimate {

@@ -40,8 +40,8 @@ TEST(MountingEstimate, FindsALaserAheadOfTheCentreDespiteOutliers) {
   EXPECT_NEAR(result.offset.x(), truth.x(), 0.01);
   EXPECT_NEAR(result.offset.y(), truth.y(), 0.01);
   // The standard deviations describe the error: small, and not far below it.
-  EXPECT_LT(result.sigma.maxCoeff(), 0.01);
-  EXPECT_LT((result.offset - truth).cwiseAbs().maxCoeff(), 5.0 * result.sigma.maxCoeff());
+  EXPECT_LT(result.sigma, 0.01);
+  EXPECT_LT((result.offset - truth).cwiseAbs().maxCoeff(), 5.0 * result.sigma);
 }
 
 TEST(MountingEstimate, ALaserAtTheCentreGivesNoOffset) {
