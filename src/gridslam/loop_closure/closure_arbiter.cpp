@@ -69,6 +69,10 @@ double DriftBound(double u, double theta, const LoopClosureOptions& options) {
   return options.max_drift * u + std::abs(theta) * 0.5 * u;
 }
 
+double HeadingDriftBound(double u, const LoopClosureOptions& options) {
+  return std::max(options.max_correction_theta, options.max_drift_theta * u);
+}
+
 bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
   return error.translation().norm() <= options.gate_xy + options.gate_xy_per_m * u &&
          std::abs(error.theta()) <= options.gate_theta + options.gate_theta_per_m * u;
@@ -210,7 +214,7 @@ Decision ClosureArbiter::OfferWithinMap(const Match& match, double u, const Grap
   const double max_correction =
       std::max(options_.max_correction, DriftBound(u, decision.error.theta(), options_));
   if (decision.error.translation().norm() > max_correction ||
-      std::abs(decision.error.theta()) > options_.max_correction_theta) {
+      std::abs(decision.error.theta()) > HeadingDriftBound(u, options_)) {
     decision.verdict = Verdict::kReject;
     decision.accepted.clear();
     return decision;

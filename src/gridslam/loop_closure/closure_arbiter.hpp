@@ -111,6 +111,12 @@ struct Decision {
 /// accrued along the path, it turned the rest of the path about points at most u / 2 from the
 /// revisit (the path leaves the place and comes back), so by at most |theta| * u / 2 [m].
 [[nodiscard]] double DriftBound(double u, double theta, const LoopClosureOptions& options);
+/// The largest rotation a match inside one map may correct as heading drift of the path between
+/// its key maps, `u` [m] their uncertainty distance: max(max_correction_theta,
+/// max_drift_theta * u) [rad]. The floor keeps the rotated look-alikes of a building with short
+/// loops out (a match that turns the map by 90 or 180 degrees); the bound grows with the path,
+/// because heading error does.
+[[nodiscard]] double HeadingDriftBound(double u, const LoopClosureOptions& options);
 /// The consistency gate: `error` within gate_xy + gate_xy_per_m * u and gate_theta +
 /// gate_theta_per_m * u, u the uncertainty distance between the key maps [m].
 [[nodiscard]] bool InGate(const Pose2& error, double u, const LoopClosureOptions& options);

@@ -389,6 +389,31 @@ TEST(ClosureArbiter, WithinMapWaitsOnADisplacementItsHeadingErrorExplains) {
             Verdict::kReject);
 }
 
+TEST(ClosureArbiter, HeadingDriftBoundGrowsWithThePathAboveItsFloor) {
+  LoopClosureOptions options;
+  options.max_correction_theta = 0.5;
+  options.max_drift_theta = 0.004;
+  EXPECT_DOUBLE_EQ(HeadingDriftBound(0.0, options), 0.5);
+  EXPECT_DOUBLE_EQ(HeadingDriftBound(100.0, options), 0.5);
+  EXPECT_DOUBLE_EQ(HeadingDriftBound(800.0, options), 3.2);
+}
+
+TEST(ClosureArbiter, WithinMapTakesALargeTurnOnlyAfterALongPath) {
+  // The estimate turned by 0.6 rad early on a line: more than the 0.5 rad floor. Over a short
+  // path that is a look-alike turned against the map, refused; after 400 m of path it is the
+  // heading error such a path can gather (0.004 rad/m: 1.6 rad), and the match waits for
+  // support like any other correction within the drift bound.
+  const Line turned(61, 1, Pose2(0.0, 0.0, 0.6));
+  ClosureArbiter short_path{LoopClosureOptions{}};
+  const Decision refused = short_path.OfferWithinMap(turned.Closure(0, 60), 100.0, turned.graph);
+  ASSERT_NEAR(std::abs(refused.error.theta()), 0.6, 1e-9);
+  EXPECT_EQ(refused.verdict, Verdict::kReject);
+  ClosureArbiter long_path{LoopClosureOptions{}};
+  EXPECT_EQ(long_path.OfferWithinMap(turned.Closure(0, 60), 400.0, turned.graph).verdict,
+            Verdict::kWait);
+  ASSERT_EQ(long_path.within_map().size(), 1U);
+}
+
 TEST(ClosureArbiter, WithinMapAcceptsIndependentConsistentMatchesTogether) {
   const TwoRobots robots(Pose2(2.0, 0.0, 0.0), true);
   LoopClosureOptions options;

@@ -63,10 +63,14 @@ struct LoopClosureOptions {
   /// when it would move the map by more than max(max_correction, max_drift * u + |theta| * u / 2)
   /// [m], [-], u the uncertainty distance between the key maps and theta the match's rotation
   /// correction (the displacement that heading error causes, closure_arbiter.hpp DriftBound), or
-  /// turn it by more than max_correction_theta [rad].
+  /// turn it by more than max(max_correction_theta, max_drift_theta * u) [rad], [rad/m]
+  /// (closure_arbiter.hpp HeadingDriftBound): a path gathers heading error with its length, as
+  /// it gathers translation error. A look-alike turned by 90 or 180 degrees in a building whose
+  /// loops are short is refused; a long excursion may come back turned by more than 0.5 rad.
   double max_correction = 10.0;
   double max_drift = 0.05;
   double max_correction_theta = 0.5;
+  double max_drift_theta = 0.004;
   /// The gate of appearance matches grows with the uncertainty distance only up to this: unlike
   /// prior-based candidates they were not preselected by proximity [m].
   double appearance_gate_max_uncertainty = 10.0;
@@ -140,7 +144,10 @@ struct LoopClosureOptions {
       "u the uncertainty distance, are refused [m]");
     v("max_drift", max_drift, "... drift per metre of uncertainty distance [-]");
     v("max_correction_theta", max_correction_theta,
-      "Appearance matches turning the map more than this are refused [rad]");
+      "Appearance matches turning the map more than max(this, max_drift_theta * u) are "
+      "refused [rad]");
+    v("max_drift_theta", max_drift_theta,
+      "... heading drift per metre of uncertainty distance [rad/m]");
     v("appearance_gate_max_uncertainty", appearance_gate_max_uncertainty,
       "Cap of the uncertainty distance in the gate of appearance matches [m]");
     v("catch_up_rounds", catch_up_rounds, "Rounds of the catch-up search after a join [-]");
