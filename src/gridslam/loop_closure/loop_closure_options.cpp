@@ -23,10 +23,10 @@ Status LoopClosureOptions::Validate() const {
       Require(appearance_spacing >= 0.0, "loop_closure.appearance_spacing >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(independent_travel >= 0.0, "loop_closure.independent_travel >= 0"));
-  GRIDSLAM_RETURN_IF_ERROR(
-      Require(max_correction >= 0.0 && max_drift >= 0.0 && max_correction_theta >= 0.0 &&
-                  max_drift_theta >= 0.0,
-              "loop_closure.max_correction, max_drift, max_correction_theta, max_drift_theta >= 0"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(
+      max_correction >= 0.0 && max_drift >= 0.0 && max_correction_theta >= 0.0 &&
+          max_drift_theta >= 0.0,
+      "loop_closure.max_correction, max_drift, max_correction_theta, max_drift_theta >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(appearance_gate_max_uncertainty >= 0.0,
                                    "loop_closure.appearance_gate_max_uncertainty >= 0"));
   GRIDSLAM_RETURN_IF_ERROR(Require(catch_up_rounds >= 0, "loop_closure.catch_up_rounds >= 0"));
