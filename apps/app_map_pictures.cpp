@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "gridslam/io/png_codec.hpp"
 
 namespace gridslam::app {
 namespace {
@@ -121,12 +122,7 @@ void DrawAxesAndScale(Canvas& canvas) {
               kBlack, 1, cv::LINE_AA);
 }
 
-Status Write(const std::string& path, const cv::Mat& image) {
-  if (!cv::imwrite(path, image)) {
-    return RuntimeError("cannot write " + path);
-  }
-  return Status::Ok();
-}
+Status Write(const std::string& path, const cv::Mat& image) { return io::WritePng(path, image); }
 
 }  // namespace
 

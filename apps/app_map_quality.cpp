@@ -5,8 +5,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include <opencv2/imgcodecs.hpp>
-
+#include "gridslam/io/png_codec.hpp"
 #include "gridslam/quality/loop_residuals.hpp"
 #include "gridslam/quality/map_self_check.hpp"
 #include "gridslam/quality/quality_image.hpp"
@@ -76,9 +75,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     cv::Mat image = buffer.Image(limits.Height(), limits.Width(), CV_8UC3);
     quality::RenderQualityImage(result.maps[c], fusion, share, threads, image);
     const std::string path = (std::filesystem::path(dir) / name).string();
-    if (!cv::imwrite(path, image)) {
-      return RuntimeError("cannot write " + path);
-    }
+    GRIDSLAM_RETURN_IF_ERROR(io::WritePng(path, image));
     per_map.push_back({{"image", name},
                        {"score", check.stats.Score()},
                        {"suspect", check.stats.Suspect(options)},

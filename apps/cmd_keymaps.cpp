@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/carmen_reader.hpp"
+#include "gridslam/io/png_codec.hpp"
 #include "gridslam/keymap/key_map.hpp"
 #include "gridslam/recording/recording_reader.hpp"
 #include "gridslam/scan_matching/front_end.hpp"
@@ -70,11 +70,7 @@ Status WriteKeyMap(const std::filesystem::path& dir, const keymap::KeyMap& key,
        {std::pair{grid_path, OccupancyToImage(occupancy)},
         std::pair{distance_path,
                   DistanceImage(keymap::ObstacleMask(key.log_odds, occupied), clamp)}}) {
-    std::vector<std::uint8_t> png;
-    if (!cv::imencode(".png", image, png)) {
-      return RuntimeError("cannot encode " + path);
-    }
-    GRIDSLAM_RETURN_IF_ERROR(io::WriteFileAtomically(path, std::string(png.begin(), png.end())));
+    GRIDSLAM_RETURN_IF_ERROR(io::WritePng(path, image));
   }
   std::ostringstream line;
   line << key.id << " " << FormatSeconds(key.time) << " " << key.T_odom_key.x() << " "

@@ -10,12 +10,12 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include "gridslam/io/atomic_file.hpp"
 #include "gridslam/io/options_yaml.hpp"
+#include "gridslam/io/png_codec.hpp"
 
 namespace gridslam::io {
 namespace {
@@ -186,15 +186,11 @@ Result<RawImage> ReadRawImage(const std::string& path) {
   }
   GRIDSLAM_RETURN_IF_ERROR(CheckPngHeader(text.value(), path));
   const std::vector<std::uint8_t> bytes(text.value().begin(), text.value().end());
-  cv::Mat mat;
-  try {
-    mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    return InvalidInput(std::string("cannot decode image: ") + e.what(), path);
+  auto decoded = DecodeImage(bytes, path);
+  if (!decoded.ok()) {
+    return decoded.error();
   }
-  if (mat.empty()) {
-    return InvalidInput("cannot decode image", path);
-  }
+  cv::Mat mat = std::move(decoded.value());
   if (mat.depth() == CV_16U) {
     mat.convertTo(mat, CV_8U, 1.0 / 257.0);
   } else if (mat.depth() != CV_8U) {
@@ -235,16 +231,11 @@ Status WriteGrayRows(const std::string& path, const std::vector<std::uint8_t>& r
     contents.append(rows.begin(), rows.end());
     return WriteFileAtomically(path, contents);
   }
-  const cv::Mat mat(height, width, CV_8UC1, const_cast<std::uint8_t*>(rows.data()));
-  std::vector<std::uint8_t> encoded;
-  try {
-    if (!cv::imencode(std::filesystem::path(path).extension().string(), mat, encoded)) {
-      return InvalidInput("cannot encode an image of this type", path);
-    }
-  } catch (const cv::Exception& e) {
-    return InvalidInput(std::string("cannot encode image: ") + e.what(), path);
+  if (!HasExtension(path, ".png")) {
+    return InvalidInput("cannot write an image of this type (.pgm or .png)", path);
   }
-  return WriteFileAtomically(path, std::string(encoded.begin(), encoded.end()));
+  const cv::Mat mat(height, width, CV_8UC1, const_cast<std::uint8_t*>(rows.data()));
+  return WritePng(path, mat);
 }
 
 }  // namespace
@@ -339,15 +330,10 @@ Status WriteMapPicture(const std::string& path, const OccupancyImage& map,
                  cv::FILLED, cv::LINE_8);
     }
   }
-  std::vector<std::uint8_t> encoded;
-  try {
-    if (!cv::imencode(std::filesystem::path(path).extension().string(), image, encoded)) {
-      return InvalidInput("cannot encode an image of this type", path);
-    }
-  } catch (const cv::Exception& e) {
-    return InvalidInput(std::string("cannot encode image: ") + e.what(), path);
+  if (!HasExtension(path, ".png")) {
+    return InvalidInput("cannot write a picture of this type (.png)", path);
   }
-  return WriteFileAtomically(path, std::string(encoded.begin(), encoded.end()));
+  return WritePng(path, image);
 }
 
 Result<Grid2D<std::uint8_t>> ReadGrayImage(const std::string& path, double resolution,
