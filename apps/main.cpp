@@ -12,6 +12,7 @@
 
 #include "gridslam/io/options_yaml.hpp"
 
+#include "app_huge_pages.hpp"
 #include "command.hpp"
 
 namespace gridslam::app {
@@ -241,6 +242,7 @@ int Main(int argc, char** argv) {
 }  // namespace gridslam::app
 
 int main(int argc, char** argv) {
+  gridslam::app::ReexecWithHugePages(argv);
   try {
     return gridslam::app::Main(argc, argv);
   } catch (const std::exception& e) {
