@@ -53,16 +53,16 @@ class Deflater {
     stream_.next_in = const_cast<Bytef*>(data);  // zlib's API is not const-correct
     stream_.avail_in = static_cast<uInt>(size);
     const int flush = last ? Z_FINISH : Z_NO_FLUSH;
-    std::array<Bytef, 1U << 16U> buffer{};
     int status = Z_OK;
     do {
-      stream_.next_out = buffer.data();
-      stream_.avail_out = static_cast<uInt>(buffer.size());
+      stream_.next_out = buffer_.data();
+      stream_.avail_out = static_cast<uInt>(buffer_.size());
       status = deflate(&stream_, flush);
       if (status == Z_STREAM_ERROR) {
         return false;
       }
-      out_.append(reinterpret_cast<const char*>(buffer.data()), buffer.size() - stream_.avail_out);
+      out_.append(reinterpret_cast<const char*>(buffer_.data()),
+                  buffer_.size() - stream_.avail_out);
     } while (stream_.avail_out == 0 || (last && status != Z_STREAM_END));
     return true;
   }
@@ -71,6 +71,7 @@ class Deflater {
  private:
   z_stream stream_{};
   bool ok_ = false;
+  std::vector<Bytef> buffer_ = std::vector<Bytef>(std::size_t{1} << 16U);  // deflate's output
   std::string out_;
 };
 
