@@ -122,8 +122,6 @@ void DrawAxesAndScale(Canvas& canvas) {
               kBlack, 1, cv::LINE_AA);
 }
 
-Status Write(const std::string& path, const cv::Mat& image) { return io::WritePng(path, image); }
-
 }  // namespace
 
 Bgr RobotColour(std::size_t robot) {
@@ -151,7 +149,7 @@ Status WriteMapPicture(const std::string& path, const OccupancyImage& map, Image
   Canvas canvas =
       MakeCanvas(map, 1, pictures);  // black, white and grey: one channel is a third to encode
   DrawAxesAndScale(canvas);
-  return Write(path, canvas.image);
+  return io::WritePng(path, canvas.image);
 }
 
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
@@ -214,7 +212,7 @@ Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
   cv::line(canvas.image, cv::Point(corner.x + 6, y), cv::Point(corner.x + 24, y), kClosureColour,
            2);
   entry("loop closure");
-  return Write(path, canvas.image);
+  return io::WritePng(path, canvas.image);
 }
 
 }  // namespace gridslam::app

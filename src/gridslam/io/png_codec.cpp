@@ -161,7 +161,7 @@ Result<std::string> EncodePng(const cv::Mat& image) {
   for (std::size_t at = 0; at < data.size(); at += kMaxChunk) {
     AppendChunk(out, "IDAT", data.data() + at, std::min(kMaxChunk, data.size() - at));
   }
-  AppendChunk(out, "IEND", nullptr, 0);
+  AppendChunk(out, "IEND", "", 0);
   return out;
 }
 
