@@ -32,6 +32,7 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"online_full_optimizations", s.online_full_optimizations},
         {"accepted", s.accepted},
         {"rejected_gate", s.rejected_gate},
+        {"rejected_beyond_drift", s.closures_beyond_drift},
         {"rejected_alignment",
          s.candidates + s.appearance_candidates + s.verification_alignments - s.verified},
         {"pruned", s.pruned}}},

@@ -47,7 +47,7 @@ bool IsBuiltin(const std::string& name) {
 Result<simulation::World> LoadWorld(const simulation::SimulationOptions& options) {
   const std::string& world = options.world;
   if (IsBuiltin(world)) {
-    return simulation::MakeBuiltinWorld(world, options.resolution);
+    return simulation::MakeBuiltinWorld(world, options.resolution, options.layout);
   }
   const std::string name = fs::path(world).stem().string();
   const std::string ext = fs::path(world).extension().string();
@@ -61,7 +61,7 @@ Result<simulation::World> LoadWorld(const simulation::SimulationOptions& options
   if (!fs::exists(world)) {
     return InvalidInput(
         "--world: '" + world +
-        "' is neither a built-in world (office, ambiguous, campus, corridors) nor a file");
+        "' is neither a built-in world (office, ambiguous, campus, corridors, courts) nor a file");
   }
   auto image = io::ReadGrayImage(world, options.resolution);
   if (!image.ok()) {
@@ -207,10 +207,10 @@ int RunSimulate(const SimulateArgs& args, AppContext& context) {
 
 RunFunction SetupSimulate(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<SimulateArgs>();
-  sub.add_option(
-      "--world", args->world,
-      "Built-in world (office, ambiguous, campus, corridors), a PNG floor plan (dark = wall) or a "
-      "map_server YAML (default: simulation.world)");
+  sub.add_option("--world", args->world,
+                 "Built-in world (office, ambiguous, campus, corridors, courts), a PNG floor plan "
+                 "(dark = wall) or a "
+                 "map_server YAML (default: simulation.world)");
   sub.add_option("--resolution", args->resolution,
                  "World cell size / PNG pixel size [m] (default: simulation.resolution)");
   sub.add_option("--robots", args->robots, "Number of robots, 1 to 4 (default 1)");

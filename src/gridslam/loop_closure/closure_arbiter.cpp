@@ -73,6 +73,13 @@ double HeadingDriftBound(double u, const LoopClosureOptions& options) {
   return std::max(options.max_correction_theta, options.max_drift_theta * u);
 }
 
+bool BeyondDrift(const Pose2& error, double u, const LoopClosureOptions& options) {
+  const double max_translation =
+      std::max(options.max_correction, DriftBound(u, error.theta(), options));
+  return error.translation().norm() > max_translation ||
+         std::abs(error.theta()) > HeadingDriftBound(u, options);
+}
+
 bool InGate(const Pose2& error, double u, const LoopClosureOptions& options) {
   return error.translation().norm() <= options.gate_xy + options.gate_xy_per_m * u &&
          std::abs(error.theta()) <= options.gate_theta + options.gate_theta_per_m * u;
@@ -157,6 +164,11 @@ Decision ClosureArbiter::OfferPrior(const Match& match, double u, bool from_sear
     decision.verdict = Verdict::kAccept;
     return decision;
   }
+  if (BeyondDrift(decision.error, u, options_)) {
+    decision.verdict = Verdict::kReject;
+    decision.accepted.clear();
+    return decision;
+  }
   // Outside the gate: once enough recent gated closures agree with each other (the loops they
   // form with the graph close), the estimate is what was wrong, and they are accepted together
   // (docs/design.md §1.6: pairwise consistency of several closures).
@@ -211,10 +223,7 @@ Decision ClosureArbiter::OfferWithinMap(const Match& match, double u, const Grap
     decision.verdict = Verdict::kAccept;
     return decision;
   }
-  const double max_correction =
-      std::max(options_.max_correction, DriftBound(u, decision.error.theta(), options_));
-  if (decision.error.translation().norm() > max_correction ||
-      std::abs(decision.error.theta()) > HeadingDriftBound(u, options_)) {
+  if (BeyondDrift(decision.error, u, options_)) {
     decision.verdict = Verdict::kReject;
     decision.accepted.clear();
     return decision;

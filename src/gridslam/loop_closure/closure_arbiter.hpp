@@ -117,6 +117,11 @@ struct Decision {
 /// loops out (a match that turns the map by 90 or 180 degrees); the bound grows with the path,
 /// because heading error does.
 [[nodiscard]] double HeadingDriftBound(double u, const LoopClosureOptions& options);
+/// True when a closure `error` (ClosureError) is more than the path between its key maps can
+/// have drifted, `u` their uncertainty distance [m]: a translation beyond max(max_correction,
+/// DriftBound) or a rotation beyond HeadingDriftBound. Such a match is a look-alike (a corridor
+/// seen from the other end matches itself turned by pi), whichever search proposed it.
+[[nodiscard]] bool BeyondDrift(const Pose2& error, double u, const LoopClosureOptions& options);
 /// The consistency gate: `error` within gate_xy + gate_xy_per_m * u and gate_theta +
 /// gate_theta_per_m * u, u the uncertainty distance between the key maps [m].
 [[nodiscard]] bool InGate(const Pose2& error, double u, const LoopClosureOptions& options);
@@ -146,7 +151,9 @@ class ClosureArbiter {
   /// trusted alone (outside the gate by definition); a group holding a match.wide_search needs
   /// two matches in it that are Independent (neighbouring key maps see one place, a look-alike
   /// as consistently as the truth). kAccept, kAcceptGroup (with gated closures
-  /// of the last gated_window key maps, which leave the queue) or kWait (queued as gated).
+  /// of the last gated_window key maps, which leave the queue), kWait (queued as gated) or,
+  /// outside the gate and BeyondDrift, kReject (not queued: a consistent group of look-alikes
+  /// must not outvote the estimate).
   Decision OfferPrior(const Match& match, double u, bool from_search, const GraphView& graph);
 
   /// An appearance match inside one map component; `u` the uncertainty distance. kAccept (in

@@ -4,6 +4,8 @@
 #include "gridslam/loop_closure/closure_arbiter.hpp"
 
 #include <cmath>
+#include <numbers>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -119,6 +121,43 @@ TEST(ClosureArbiter, AcceptsAConsistentGroupOfGatedClosures) {
   EXPECT_EQ(d.accepted[1].k, 30);
   EXPECT_EQ(d.accepted[2].k, 31);
   EXPECT_TRUE(arbiter.gated().empty());
+}
+
+// A corridor met from its other end can match itself turned by pi, at every key map along it:
+// a consistent group. Over a short path the estimate cannot be off by that much, so each match
+// is refused and none waits to outvote the estimate; after a long path the same turn is heading
+// drift the path can gather, and the group is accepted as before.
+TEST(ClosureArbiter, PriorClosuresBeyondTheDriftOfTheirPathAreRefused) {
+  const Line turned(40, 20, Pose2(0.0, 0.0, std::numbers::pi));
+  LoopClosureOptions options;
+  ClosureArbiter short_path(options);
+  for (const auto& [i, k] : {std::pair{2, 30}, std::pair{5, 31}, std::pair{8, 32}}) {
+    const Decision d = short_path.OfferPrior(turned.Closure(i, k), 10.0, false, turned.graph);
+    EXPECT_EQ(d.verdict, Verdict::kReject);
+    EXPECT_TRUE(d.accepted.empty());
+    EXPECT_NEAR(std::abs(d.error.theta()), std::numbers::pi, 1e-9);
+  }
+  EXPECT_TRUE(short_path.gated().empty());
+  ClosureArbiter long_path(options);
+  ASSERT_GT(HeadingDriftBound(900.0, options), std::numbers::pi);
+  EXPECT_EQ(long_path.OfferPrior(turned.Closure(2, 30), 900.0, false, turned.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(long_path.OfferPrior(turned.Closure(5, 31), 900.0, false, turned.graph).verdict,
+            Verdict::kWait);
+  EXPECT_EQ(long_path.OfferPrior(turned.Closure(8, 32), 900.0, false, turned.graph).verdict,
+            Verdict::kAcceptGroup);
+}
+
+TEST(ClosureArbiter, BeyondDriftIsTheWithinMapBound) {
+  LoopClosureOptions options;
+  // Translation: max(max_correction, max_drift * u + |theta| * u / 2); rotation: the heading bound.
+  EXPECT_FALSE(BeyondDrift(Pose2(9.9, 0.0, 0.0), 10.0, options));
+  EXPECT_TRUE(BeyondDrift(Pose2(10.1, 0.0, 0.0), 10.0, options));
+  EXPECT_FALSE(BeyondDrift(Pose2(14.9, 0.0, 0.0), 300.0, options));
+  EXPECT_TRUE(BeyondDrift(Pose2(15.1, 0.0, 0.0), 300.0, options));
+  EXPECT_FALSE(BeyondDrift(Pose2(0.0, 0.0, 0.49), 10.0, options));
+  EXPECT_TRUE(BeyondDrift(Pose2(0.0, 0.0, 0.51), 10.0, options));
+  EXPECT_FALSE(BeyondDrift(Pose2(0.0, 0.0, 1.5), 400.0, options));
 }
 
 // Two matches of one key map (its scans against two older key maps) repeat one piece of

@@ -69,6 +69,9 @@ struct MapperStats {
   long verified_loops = 0;
   long accepted = 0;  ///< Loop edges added.
   long rejected_gate = 0;
+  /// Prior-based closures refused because they correct more than the path between their key
+  /// maps can have drifted (loop_closure::BeyondDrift): look-alikes.
+  long closures_beyond_drift = 0;
   long pruned = 0;
   long joins = 0;
   /// Joins refused because their alignments put walls in free space far more often than the

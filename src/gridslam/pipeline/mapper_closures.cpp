@@ -55,6 +55,14 @@ PriorSearch Mapper::Impl::SearchPriorCandidates(int k) {
     GRIDSLAM_LOG_DEBUG("closure {}-{} (t {:.1f}-{:.1f}) aligned: error {:.3f} m {:.3f} rad", i, k,
                        ToSeconds(graph.node(i).time), ToSeconds(graph.node(k).time),
                        error.translation().norm(), error.theta());
+    if (decision.verdict == Verdict::kReject) {
+      ++stats.closures_beyond_drift;
+      GRIDSLAM_LOG_DEBUG(
+          "closure {}-{} refused: corrects {:.3f} m {:.3f} rad, beyond the drift of {:.1f} m of "
+          "uncertainty",
+          i, k, error.translation().norm(), error.theta(), u);
+      continue;
+    }
     if (decision.verdict == Verdict::kWait) {
       GRIDSLAM_LOG_DEBUG("closure {}-{} gated: error {:.3f} m {:.3f} rad, uncertainty {:.1f} m", i,
                          k, error.translation().norm(), error.theta(), u);

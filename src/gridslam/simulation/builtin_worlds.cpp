@@ -17,11 +17,20 @@
 //             building) between outer and inner offices and a solid core; each side has doors
 //             along one 20 m stretch only, so 30-40 m of every side is blank wall. Its tour
 //             drives the ring twice anticlockwise, visiting four rooms.
+//   courts    260 x 130 m: a 236 x 106 m ring of 2.4 m corridors around two courtyards, split by
+//             a middle corridor (like MIT's Killian Court building), lined on both sides with
+//             rooms of pseudo-random width and depth, most with a door, some with a cabinet
+//             (`simulation.layout` chooses the draw; 1 by default).
+//             Its 1.81 km tour drives the whole ring (690 m) before closing it, up the middle
+//             corridor and all the way back: every corridor is met again from its other end,
+//             where a stretch of doors can look like itself turned by pi.
 // Walls are 0.2 m thick; doors 1.2 m. Routes run along corridor centrelines and into rooms
 // through the doors, well clear of walls and furniture.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <random>
 #include <utility>
 
 #include "gridslam/simulation/world.hpp"
@@ -481,15 +490,106 @@ World MakeCorridors(double resolution) {
   return b.Build("corridors", std::move(route));
 }
 
+/// Uniform numbers from std::minstd_rand, whose sequence the standard fixes (the distributions
+/// of <random> are not portable): the same world on every platform.
+class UniformSource {
+ public:
+  explicit UniformSource(std::uint32_t seed) : engine_(seed) {}
+  double operator()(double lo, double hi) {
+    const double unit = static_cast<double>(engine_() - std::minstd_rand::min()) /
+                        static_cast<double>(std::minstd_rand::max() - std::minstd_rand::min());
+    return lo + (hi - lo) * unit;
+  }
+
+ private:
+  std::minstd_rand engine_;
+};
+
+/// Rooms along one side of a straight corridor: from u0 to u1 along the corridor (x for a
+/// horizontal one, y for a vertical one), behind its wall face at `face` (the other coordinate),
+/// reaching away from the corridor in direction `out` (+1 or -1). Widths 3-9 m, depths 3-7 m;
+/// three in four have a door, one in two a 0.8 x 0.6 m cabinet.
+void RoomsAlong(WorldBuilder& b, UniformSource& uniform, bool horizontal, double u0, double u1,
+                double face, double out) {
+  const auto rect = [&](double ua, double va, double ub, double vb, bool fill) {
+    const double lo_u = std::min(ua, ub);
+    const double hi_u = std::max(ua, ub);
+    const double lo_v = std::min(va, vb);
+    const double hi_v = std::max(va, vb);
+    if (horizontal) {
+      fill ? b.Fill(lo_u, lo_v, hi_u, hi_v) : b.Carve(lo_u, lo_v, hi_u, hi_v);
+    } else {
+      fill ? b.Fill(lo_v, lo_u, hi_v, hi_u) : b.Carve(lo_v, lo_u, hi_v, hi_u);
+    }
+  };
+  double u = u0 + 1.0;
+  while (u < u1 - 4.0) {
+    const double w = std::min(uniform(3.0, 9.0), u1 - u - 0.5);
+    if (w < 2.5) {
+      break;
+    }
+    const double depth = uniform(3.0, 7.0);
+    const double v0 = face + out * kWall;
+    rect(u, v0, u + w, v0 + out * depth, false);
+    if (uniform(0.0, 1.0) < 0.75) {
+      const double door = u + uniform(0.3, w - kDoor - 0.3);
+      rect(door, face - out * 0.05, door + kDoor, v0 + out * 0.05, false);
+    }
+    if (uniform(0.0, 1.0) < 0.5) {
+      const double cu = u + uniform(0.5, w - 1.5);
+      const double cv = v0 + out * uniform(1.0, depth - 1.0);
+      rect(cu, cv, cu + 0.8, cv + out * 0.6, true);
+    }
+    u += w + kWall;
+  }
+}
+
+World MakeCourts(double resolution, int layout) {
+  // Corridor centrelines: south y = 12, north y = 118, west x = 12, east x = 248, middle x = 130.
+  WorldBuilder b(260.0, 130.0, resolution);
+  const auto corridors = [&b] {
+    b.Carve(10.8, 10.8, 249.2, 13.2).Carve(10.8, 116.8, 249.2, 119.2);
+    b.Carve(10.8, 10.8, 13.2, 119.2).Carve(246.8, 10.8, 249.2, 119.2);
+    b.Carve(128.8, 10.8, 131.2, 119.2);
+  };
+  corridors();
+  UniformSource uniform(static_cast<std::uint32_t>(layout));
+  // Outer rooms along the whole of each side; courtyard rooms keep 7.3 m clear of the corners,
+  // where the rooms of the crossing corridor reach.
+  RoomsAlong(b, uniform, true, 13.2, 246.8, 10.8, -1.0);   // south, outer
+  RoomsAlong(b, uniform, true, 13.2, 246.8, 119.2, 1.0);   // north, outer
+  RoomsAlong(b, uniform, false, 13.2, 116.8, 10.8, -1.0);  // west, outer
+  RoomsAlong(b, uniform, false, 13.2, 116.8, 249.2, 1.0);  // east, outer
+  for (const auto& [u0, u1] : {std::pair{20.5, 121.5}, std::pair{138.5, 239.5}}) {
+    RoomsAlong(b, uniform, true, u0, u1, 13.2, 1.0);    // south, courtyard side
+    RoomsAlong(b, uniform, true, u0, u1, 116.8, -1.0);  // north, courtyard side
+  }
+  RoomsAlong(b, uniform, false, 20.5, 109.5, 13.2, 1.0);    // west, courtyard side
+  RoomsAlong(b, uniform, false, 20.5, 109.5, 246.8, -1.0);  // east, courtyard side
+  RoomsAlong(b, uniform, false, 20.5, 109.5, 128.8, -1.0);  // middle, west side
+  RoomsAlong(b, uniform, false, 20.5, 109.5, 131.2, 1.0);   // middle, east side
+  corridors();                                              // no cabinet may reach into a corridor
+  // The ring anticlockwise and up the middle corridor, then the same way back: every corridor
+  // is met again from its other end.
+  std::vector<V2> route = {{12.0, 12.0}, {248.0, 12.0}, {248.0, 118.0}, {12.0, 118.0},
+                           {12.0, 12.0}, {130.0, 12.0}, {130.0, 118.0}, {130.0, 12.0},
+                           {12.0, 12.0}, {12.0, 118.0}, {248.0, 118.0}, {248.0, 12.0},
+                           {12.0, 12.0}};
+  return b.Build("courts", std::move(route));
+}
+
 }  // namespace
 
 std::vector<std::string> BuiltinWorldNames() {
-  return {"office", "ambiguous", "campus", "corridors"};
+  return {"office", "ambiguous", "campus", "corridors", "courts"};
 }
 
-Result<World> MakeBuiltinWorld(const std::string& name, double resolution) {
+Result<World> MakeBuiltinWorld(const std::string& name, double resolution, int layout) {
   if (!(resolution > 0.0 && resolution <= 0.5)) {
     return InvalidInput("world resolution must be in (0, 0.5] m");
+  }
+  if (layout < 1) {
+    return InvalidInput("world layout must be 1 or more");
   }
   if (name == "office") {
     return MakeOffice(resolution);
@@ -503,8 +603,11 @@ Result<World> MakeBuiltinWorld(const std::string& name, double resolution) {
   if (name == "corridors") {
     return MakeCorridors(resolution);
   }
+  if (name == "courts") {
+    return MakeCourts(resolution, layout);
+  }
   return InvalidInput("unknown built-in world '" + name +
-                      "' (office, ambiguous, campus, corridors)");
+                      "' (office, ambiguous, campus, corridors, courts)");
 }
 
 }  // namespace gridslam::simulation

@@ -82,6 +82,7 @@ Status SimulationOptions::Validate() const {
   GRIDSLAM_RETURN_IF_ERROR(Require(!world.empty(), "simulation.world is not empty"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(resolution >= 0.005 && resolution <= 0.5, "simulation.resolution in [0.005, 0.5]"));
+  GRIDSLAM_RETURN_IF_ERROR(Require(layout >= 1, "simulation.layout is 1 or more"));
   GRIDSLAM_RETURN_IF_ERROR(Require(robots >= 1 && robots <= 4, "simulation.robots in 1..4"));
   GRIDSLAM_RETURN_IF_ERROR(
       Require(duration >= 0.0 && duration <= kMaxSimulatedDuration,

@@ -138,6 +138,7 @@ struct SimulationOptions {
   std::string world = "office";      ///< Built-in world name, or a PNG floor plan / map YAML path.
   std::string route;                 ///< Waypoints file; "" = the world's built-in tour.
   double resolution = 0.05;          ///< World grid cell size (and PNG pixel size) [m].
+  int layout = 1;                    ///< Draw of a world laid out at random (courts), >= 1.
   int robots = 1;                    ///< Number of robots (1..4).
   int seed = 1;                      ///< Random seed; equal seeds give byte-identical output.
   double duration = 0.0;             ///< Simulated time per robot [s], <= 86400; 0 = one tour.
@@ -150,9 +151,11 @@ struct SimulationOptions {
   template <class V>
   void Visit(V& v) {
     v("world", world,
-      "Built-in world (office, ambiguous, campus, corridors) or a PNG floor plan / map YAML file");
+      "Built-in world (office, ambiguous, campus, corridors, courts) or a PNG floor plan / map "
+      "YAML file");
     v("route", route, "Waypoints file (x y per line, world frame); empty = built-in tour");
     v("resolution", resolution, "World grid cell size; pixel size of a PNG floor plan [m]");
+    v("layout", layout, "Draw of the rooms of a world laid out at random (courts), 1 or more");
     v("robots", robots, "Number of robots, 1 to 4");
     v("seed", seed, "Random seed; the same seed gives byte-identical output");
     v("duration", duration, "Simulated time per robot [s]; 0 = one tour of the route");

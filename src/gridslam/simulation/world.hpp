@@ -63,10 +63,11 @@ class WorldBuilder {
   Grid2D<std::uint8_t> walls_;
 };
 
-/// Names of the built-in worlds ("office", "ambiguous", "campus", "corridors").
+/// Names of the built-in worlds ("office", "ambiguous", "campus", "corridors", "courts").
 std::vector<std::string> BuiltinWorldNames();
 
 /// A built-in world at the given resolution [m], with its tour; InvalidInput for unknown names.
-Result<World> MakeBuiltinWorld(const std::string& name, double resolution);
+/// `layout` (>= 1) draws the rooms of a world laid out at random ("courts"); the others ignore it.
+Result<World> MakeBuiltinWorld(const std::string& name, double resolution, int layout = 1);
 
 }  // namespace gridslam::simulation

@@ -209,5 +209,75 @@ TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
   EXPECT_GT(in_rooms, 4 * 10);
 }
 
+TEST(WorldTest, CourtsAreALargeRingDrivenBothWays) {
+  const auto world = MakeBuiltinWorld("courts", 0.05);
+  ASSERT_TRUE(world.ok());
+  const World& w = world.value();
+  // The ring and the middle corridor are free on their centrelines; the courtyards are solid.
+  for (const double x : {14.0, 70.0, 130.0, 190.0, 246.0}) {
+    EXPECT_FALSE(w.IsWall({x, 12.0}));
+    EXPECT_FALSE(w.IsWall({x, 118.0}));
+  }
+  for (const double y : {14.0, 65.0, 116.0}) {
+    EXPECT_FALSE(w.IsWall({12.0, y}));
+    EXPECT_FALSE(w.IsWall({130.0, y}));
+    EXPECT_FALSE(w.IsWall({248.0, y}));
+  }
+  EXPECT_TRUE(w.IsWall({70.0, 65.0}));
+  EXPECT_TRUE(w.IsWall({190.0, 65.0}));
+  // The layout draws other rooms along the same corridors; layout 0 is refused.
+  const auto other = MakeBuiltinWorld("courts", 0.05, 2);
+  ASSERT_TRUE(other.ok());
+  EXPECT_FALSE(other.value().IsWall({130.0, 65.0}));
+  int differ = 0;
+  for (double x = 14.0; x < 246.0; x += 0.5) {
+    differ += w.IsWall({x, 15.0}) != other.value().IsWall({x, 15.0}) ? 1 : 0;
+  }
+  EXPECT_GT(differ, 10);
+  EXPECT_FALSE(MakeBuiltinWorld("courts", 0.05, 0).ok());
+  // Rooms open off the corridors: from the south corridor some beams reach beyond its walls.
+  const RayCaster caster(w);
+  int beyond = 0;
+  for (int k = 0; k < 360; ++k) {
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
+    const RayHit hit = caster.Cast({70.0, 12.0}, angle, 30.0);
+    beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
+  }
+  EXPECT_GT(beyond, 10);
+  // The tour: about 1.8 km, collision-free; it comes back to its start only after the whole
+  // ring (690 m), and some corridor is driven in both directions.
+  SimulationOptions options;
+  options.relations.revisit_stride = 1000;
+  const auto run = Simulate(w, {}, options);
+  ASSERT_TRUE(run.ok()) << run.error().ToString();
+  const RobotRun& robot = run.value().robots[0];
+  EXPECT_GT(robot.distance, 1750.0);
+  EXPECT_LT(robot.distance, 1900.0);
+  const Eigen::Vector2d start = robot.frames.front().T_world_base_true->translation();
+  bool left = false;
+  double travel = 0.0;
+  double back_after = 0.0;  // path length when the robot first comes back near its start
+  for (std::size_t k = 1; k < robot.frames.size() && back_after == 0.0; ++k) {
+    const Eigen::Vector2d p = robot.frames[k].T_world_base_true->translation();
+    travel += (p - robot.frames[k - 1].T_world_base_true->translation()).norm();
+    left = left || (p - start).norm() > 10.0;
+    if (left && (p - start).norm() < 3.0) {
+      back_after = travel;
+    }
+  }
+  EXPECT_GT(back_after, 650.0);
+  bool both_ways = false;
+  const auto& frames = robot.frames;
+  for (std::size_t k = 0; k < frames.size() && !both_ways; k += 25) {
+    for (std::size_t j = 0; j + 1000 < k && !both_ways; j += 5) {
+      const Pose2& a = *frames[j].T_world_base_true;
+      const Pose2& b = *frames[k].T_world_base_true;
+      both_ways = (a.translation() - b.translation()).norm() < 0.5 &&
+                  std::abs(NormalizeAngle(a.theta() - b.theta())) > 3.0;
+    }
+  }
+  EXPECT_TRUE(both_ways);
+}
+
 }  // namespace
 }  // namespace gridslam::simulation
