@@ -257,6 +257,21 @@ void RunBands(const std::vector<int>& edges, Band&& band) {
 
 }  // namespace
 
+TiledGrid<float> FuseScansFitting(const std::vector<PosedScan>& scans, FusionOptions options,
+                                  int threads) {
+  constexpr double kCoarsest = 10.0;  // FusionOptions::Validate's bound [m]
+  for (;;) {
+    try {
+      return FuseScansTiled(scans, options, threads);
+    } catch (const std::length_error&) {
+      if (options.resolution * 2.0 > kCoarsest) {
+        throw;
+      }
+      options.resolution *= 2.0;
+    }
+  }
+}
+
 TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
                                 int threads, long dense_cells) {
   const PreparedScans prepared = Prepare(scans, options, threads);

@@ -73,6 +73,14 @@ constexpr long kDenseFusionCells = 16'000'000L;
 TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
                                 int threads = 1, long dense_cells = kDenseFusionCells);
 
+/// FuseScansTiled at options.resolution, or, when the scans span more than kMaxFusedCells at
+/// it, at the finest of resolution * 2^k (k = 1, 2, ...; at most 10 m) that fits: a trajectory
+/// that ran away (scan matching without odometry along a featureless corridor) still gives a
+/// map, coarser, and the run keeps its other outputs. The grid's limits carry the resolution
+/// used. Throws as FuseScans when even 10 m cells do not fit (or a pose is not finite).
+TiledGrid<float> FuseScansFitting(const std::vector<PosedScan>& scans, FusionOptions options,
+                                  int threads = 1);
+
 /// A key map at its optimized pose (borrowed).
 struct PosedKeyMap {
   Pose2 T_map_key;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "gridslam/common/logging.hpp"
 #include "gridslam/common/thread_scratch.hpp"
 #include "gridslam/fusion/global_grid.hpp"
 #include "gridslam/grid/log_odds.hpp"
@@ -130,7 +131,16 @@ MapperResult Mapper::Impl::Finish() {
         }
       }
       result.maps.push_back(
-          fusion::FuseScansTiled(posed, options.fusion, options.compute.Threads()));
+          fusion::FuseScansFitting(posed, options.fusion, options.compute.Threads()));
+      const double resolution = result.maps.back().Limits().Resolution();
+      if (resolution != options.fusion.resolution) {
+        GRIDSLAM_LOG_WARN(
+            "the map spans {:.0f} m x {:.0f} m: fused at {:g} m cells instead of {:g} m (did the "
+            "trajectory run away?)",
+            result.maps.back().Limits().Width() * resolution,
+            result.maps.back().Limits().Height() * resolution, resolution,
+            options.fusion.resolution);
+      }
     }
   }
   stats.seconds_fusion += SecondsSince(start);
