@@ -209,8 +209,7 @@ RunFunction SetupSimulate(CLI::App& sub, AppContext& /*context*/) {
   auto args = std::make_shared<SimulateArgs>();
   sub.add_option("--world", args->world,
                  "Built-in world (office, ambiguous, campus, corridors, courts), a PNG floor plan "
-                 "(dark = wall) or a "
-                 "map_server YAML (default: simulation.world)");
+                 "(dark = wall) or a map_server YAML (default: simulation.world)");
   sub.add_option("--resolution", args->resolution,
                  "World cell size / PNG pixel size [m] (default: simulation.resolution)");
   sub.add_option("--robots", args->robots, "Number of robots, 1 to 4 (default 1)");

@@ -159,6 +159,18 @@ TEST(WorldTest, CampusTourIsLongAndClosesItsLoopsOnlyAfterLongExcursions) {
   EXPECT_LT(loop, 400.0);  // ... and the tour does close loops (the 310 m one).
 }
 
+/// Beams of a 360-beam scan at `at`, in a corridor along x, that end more than 1.5 m to its side
+/// (in a room behind a door).
+int BeamsIntoRooms(const RayCaster& caster, const Eigen::Vector2d& at, double max_range) {
+  int beyond = 0;
+  for (int k = 0; k < 360; ++k) {
+    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
+    const RayHit hit = caster.Cast(at, angle, max_range);
+    beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
+  }
+  return beyond;
+}
+
 TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
   const auto world = MakeBuiltinWorld("corridors", 0.05);
   ASSERT_TRUE(world.ok());
@@ -186,13 +198,7 @@ TEST(WorldTest, CorridorsAreASquareRingWithBlankStretchesAndRooms) {
   }
   EXPECT_GT(hits, 300);
   // ... while the door stretch has openings into rooms (some beams reach beyond the walls).
-  int beyond = 0;
-  for (int k = 0; k < 360; ++k) {
-    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
-    const RayHit hit = caster.Cast({22.0, 6.0}, angle, 10.0);
-    beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
-  }
-  EXPECT_GT(beyond, 10);
+  EXPECT_GT(BeamsIntoRooms(caster, {22.0, 6.0}, 10.0), 10);
   // The tour: twice round the ring (about 480 m) and four room visits, collision-free.
   SimulationOptions options;
   options.relations.revisit_stride = 1000;
@@ -236,14 +242,7 @@ TEST(WorldTest, CourtsAreALargeRingDrivenBothWays) {
   EXPECT_GT(differ, 10);
   EXPECT_FALSE(MakeBuiltinWorld("courts", 0.05, 0).ok());
   // Rooms open off the corridors: from the south corridor some beams reach beyond its walls.
-  const RayCaster caster(w);
-  int beyond = 0;
-  for (int k = 0; k < 360; ++k) {
-    const double angle = (k + 0.5) * 2.0 * std::numbers::pi / 360.0;
-    const RayHit hit = caster.Cast({70.0, 12.0}, angle, 30.0);
-    beyond += std::abs(hit.range * std::sin(angle)) > 1.5 ? 1 : 0;
-  }
-  EXPECT_GT(beyond, 10);
+  EXPECT_GT(BeamsIntoRooms(RayCaster(w), {70.0, 12.0}, 30.0), 10);
   // The tour: about 1.8 km, collision-free; it comes back to its start only after the whole
   // ring (690 m), and some corridor is driven in both directions.
   SimulationOptions options;
