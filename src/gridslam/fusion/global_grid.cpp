@@ -257,24 +257,11 @@ void RunBands(const std::vector<int>& edges, Band&& band) {
 
 }  // namespace
 
-TiledGrid<float> FuseScansFitting(const std::vector<PosedScan>& scans, FusionOptions options,
-                                  int threads) {
-  constexpr double kCoarsest = 10.0;  // FusionOptions::Validate's bound [m]
-  for (;;) {
-    try {
-      return FuseScansTiled(scans, options, threads);
-    } catch (const std::length_error&) {
-      if (options.resolution * 2.0 > kCoarsest) {
-        throw;
-      }
-      options.resolution *= 2.0;
-    }
-  }
-}
+namespace {
 
-TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
-                                int threads, long dense_cells) {
-  const PreparedScans prepared = Prepare(scans, options, threads);
+/// FuseScansTiled of scans already prepared (Prepare does not depend on the resolution).
+TiledGrid<float> FusePrepared(const PreparedScans& prepared, const FusionOptions& options,
+                              int threads, long dense_cells) {
   if (prepared.scans.empty()) {
     return TiledGrid<float>(MapLimits(options.resolution, Eigen::Vector2d::Zero(), 1, 1),
                             kUnknownLogOdds);
@@ -333,6 +320,29 @@ TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const Fusio
              });
            });
   return grid;
+}
+
+}  // namespace
+
+TiledGrid<float> FuseScansTiled(const std::vector<PosedScan>& scans, const FusionOptions& options,
+                                int threads, long dense_cells) {
+  return FusePrepared(Prepare(scans, options, threads), options, threads, dense_cells);
+}
+
+TiledGrid<float> FuseScansFitting(const std::vector<PosedScan>& scans, FusionOptions options,
+                                  int threads) {
+  constexpr double kCoarsest = 10.0;  // FusionOptions::Validate's bound [m]
+  const PreparedScans prepared = Prepare(scans, options, threads);
+  for (;;) {
+    try {
+      return FusePrepared(prepared, options, threads, kDenseFusionCells);
+    } catch (const std::length_error&) {
+      if (options.resolution * 2.0 > kCoarsest) {
+        throw;
+      }
+      options.resolution *= 2.0;
+    }
+  }
 }
 
 Grid2D<float> FuseNearestKeyMap(const std::vector<PosedKeyMap>& key_maps,
