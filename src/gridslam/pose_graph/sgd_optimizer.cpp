@@ -166,6 +166,9 @@ void SgdOptimizer::RaiseRates(const SgdEdge& edge) {
 
 void SgdOptimizer::Rebuild() {
   graph_synced_ = false;
+  paths_.clear();  // The tree changes: every path is walked again.
+  path_nodes_.clear();
+  path_free_.clear();
   SyncGraph();
   fixed_ = EffectiveFixed(graph_);
   BuildTree();

@@ -26,6 +26,7 @@
 // Not thread-safe; one optimizer per graph.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -88,9 +89,23 @@ class SgdOptimizer {
   int CollectBranch(int v, int top, std::vector<int>& nodes) const;
   [[nodiscard]] int Root(int v) const;
 
+  /// An edge's tree path as ranges of path_nodes_ and path_free_: its first branch (v1 up to,
+  /// not including, the top) is [begin, split), its second (v2 up to the top) [split, end); the
+  /// free vertices of both, in the same order, [free_begin, free_split) and [free_split,
+  /// free_end).
+  struct EdgePath {
+    std::uint32_t begin = 0;
+    std::uint32_t split = 0;
+    std::uint32_t end = 0;
+    std::uint32_t free_begin = 0;
+    std::uint32_t free_split = 0;
+    std::uint32_t free_end = 0;
+  };
+
   // One iteration (sgd_update.cpp).
+  void IndexPaths();
   void ComputePreconditioner();
-  void UpdateEdge(const SgdEdge& edge);
+  void UpdateEdge(const SgdEdge& edge, const EdgePath& path);
 
   SgdOptions options_;
   mutable PoseGraph graph_;
@@ -116,10 +131,17 @@ class SgdOptimizer {
   std::vector<Eigen::Vector3d> inv_precond_;
   bool toro_ = false;  ///< options_.variant == "toro".
 
-  // Scratch space of one edge update.
-  std::vector<int> branch1_;
+  // The edges' tree paths, walked once per tree instead of once per edge and iteration: a path
+  // changes only when the tree is rebuilt (Rebuild clears them). A leaf attached later is on no
+  // earlier edge's path, and only such a leaf changes from fixed to free outside Rebuild.
+  std::vector<EdgePath> paths_;  ///< Per edge index; the edges beyond its size are not indexed.
+  std::vector<int> path_nodes_;
+  std::vector<int> path_free_;
+
+  // Scratch space.
+  std::vector<int> branch1_;  ///< RaiseRates' branches.
   std::vector<int> branch2_;
-  std::vector<int> free_;  ///< The free vertices of branch1_ then branch2_, in order.
+  std::vector<double> shares_;  ///< t_edge / t_n of an edge's free vertices.
 };
 
 }  // namespace gridslam::pose_graph

@@ -34,18 +34,43 @@ Eigen::Vector3d RotatedProduct(const Eigen::Matrix3d& information, double c, dou
 }  // namespace
 
 void SgdOptimizer::Iterate(int n) {
+  IndexPaths();
+  graph_synced_ = n <= 0 && graph_synced_;  // graph() copies the poses when it is next read.
   for (int it = 0; it < n; ++it) {
-    SyncGraph();
-    graph_synced_ = false;
     ComputePreconditioner();
     for (double& age : age_) {
       age += 1.0;  // TORO increments its iteration count before the sweep.
     }
     for (const int k : sorted_) {
-      UpdateEdge(edges_[U(k)]);
+      UpdateEdge(edges_[U(k)], paths_[U(k)]);
     }
     RecomputePoses();
     ++iterations_;
+  }
+}
+
+void SgdOptimizer::IndexPaths() {
+  const auto at = [](const std::vector<int>& v) { return static_cast<std::uint32_t>(v.size()); };
+  for (std::size_t k = paths_.size(); k < edges_.size(); ++k) {
+    const SgdEdge& edge = edges_[k];
+    EdgePath path;
+    path.begin = at(path_nodes_);
+    path.free_begin = at(path_free_);
+    const auto walk = [&](int start) {
+      for (int v = start; v != edge.top; v = parent_[U(v)]) {
+        path_nodes_.push_back(v);
+        if (!fixed_[U(v)]) {
+          path_free_.push_back(v);
+        }
+      }
+    };
+    walk(edge.v1);
+    path.split = at(path_nodes_);
+    path.free_split = at(path_free_);
+    walk(edge.v2);
+    path.end = at(path_nodes_);
+    path.free_end = at(path_free_);
+    paths_.push_back(path);
   }
 }
 
@@ -54,20 +79,16 @@ void SgdOptimizer::ComputePreconditioner() {
   gamma_ = Eigen::Vector3d::Constant(kMax);
   std::fill(precond_.begin(), precond_.end(), Eigen::Vector3d::Zero());
   const bool toro = toro_;
-  for (const SgdEdge& edge : edges_) {
+  for (std::size_t k = 0; k < edges_.size(); ++k) {
+    const SgdEdge& edge = edges_[k];
+    const EdgePath& path = paths_[k];
     // TORO rotates by the measurement's own angle; "g2o" by the predicted pose's.
     const double theta = toro ? edge.z.z() : pose_[U(edge.v1)].z() + edge.z.z();
     const Eigen::Vector3d w = RotatedDiagonal(edge.information, std::cos(theta), std::sin(theta));
-    bool any_free = false;
-    for (const int start : {edge.v1, edge.v2}) {
-      for (int v = start; v != edge.top; v = parent_[U(v)]) {
-        if (!fixed_[U(v)]) {
-          precond_[U(v)] += w;
-          any_free = true;
-        }
-      }
+    for (std::uint32_t f = path.free_begin; f < path.free_end; ++f) {
+      precond_[U(path_free_[f])] += w;
     }
-    if (any_free) {
+    if (path.free_end > path.free_begin) {
       gamma_ = gamma_.cwiseMin(w);
     }
   }
@@ -82,35 +103,25 @@ void SgdOptimizer::ComputePreconditioner() {
   }
 }
 
-void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
-  // Poses relative to the stored pose of the top (TORO's getPose): the top's pose plus the
-  // parameters up each branch (CollectBranch's walk, summed as it goes), and the free vertices of
-  // both branches in order (the loops below visit only them).
-  const Eigen::Vector3d base =
-      edge.top < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(pose_[U(edge.top)]);
-  free_.clear();
-  Eigen::Vector3d p1 = base;
-  branch1_.clear();
-  for (int n = edge.v1; n != edge.top; n = parent_[U(n)]) {
-    branch1_.push_back(n);
-    p1 += param_[U(n)];
-    if (!fixed_[U(n)]) {
-      free_.push_back(n);
-    }
-  }
-  const std::size_t split = free_.size();
-  Eigen::Vector3d p2 = base;
-  branch2_.clear();
-  for (int n = edge.v2; n != edge.top; n = parent_[U(n)]) {
-    branch2_.push_back(n);
-    p2 += param_[U(n)];
-    if (!fixed_[U(n)]) {
-      free_.push_back(n);
-    }
-  }
-  const int length = static_cast<int>(free_.size());
+void SgdOptimizer::UpdateEdge(const SgdEdge& edge, const EdgePath& path) {
+  const std::size_t length = path.free_end - path.free_begin;
   if (length == 0) {
     return;  // Both ends fixed.
+  }
+  // Poses relative to the stored pose of the top (TORO's getPose): the top's pose plus the
+  // parameters up each branch, summed from the end vertex upwards.
+  const int* const nodes = path_nodes_.data();
+  const int* const free = path_free_.data() + path.free_begin;
+  const std::size_t split = path.free_split - path.free_begin;
+  const Eigen::Vector3d base =
+      edge.top < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(pose_[U(edge.top)]);
+  Eigen::Vector3d p1 = base;
+  for (std::uint32_t i = path.begin; i < path.split; ++i) {
+    p1 += param_[U(nodes[i])];
+  }
+  Eigen::Vector3d p2 = base;
+  for (std::uint32_t i = path.split; i < path.end; ++i) {
+    p2 += param_[U(nodes[i])];
   }
   // Residual r = (p1 (+) Z) - p2 in the global frame, theta wrapped.
   const double c1 = std::cos(p1.z());
@@ -125,15 +136,18 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
   const Eigen::Vector3d d = 2.0 * RotatedProduct(edge.information, cw, sw, r);
 
   // Per-node schedules (Grisetti 2009): the edge uses the fastest rate on its path, t_edge;
-  // slower nodes take a proportionally smaller share. A node's share is 1 / (M t) per
-  // dimension (TORO: 1 / M, all t equal in batch use).
+  // slower nodes take a proportionally smaller share t_edge / t_n. A node's share is 1 / (M t)
+  // per dimension (TORO: 1 / M, all t equal in batch use).
   double t_edge = std::numeric_limits<double>::max();
-  for (const int v : free_) {
-    t_edge = std::min(t_edge, age_[U(v)]);
+  for (std::size_t f = 0; f < length; ++f) {
+    t_edge = std::min(t_edge, age_[U(free[f])]);
   }
+  shares_.resize(length);
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
-  for (const int v : free_) {
-    total += (t_edge / age_[U(v)]) * inv_precond_[U(v)];
+  for (std::size_t f = 0; f < length; ++f) {
+    const int v = free[f];
+    shares_[f] = t_edge / age_[U(v)];
+    total += shares_[f] * inv_precond_[U(v)];
   }
   Eigen::Vector3d beta;
   for (int dim = 0; dim < 3; ++dim) {
@@ -145,18 +159,23 @@ void SgdOptimizer::UpdateEdge(const SgdEdge& edge) {
     beta[dim] = total[dim] > 0.0 && std::isfinite(total[dim]) ? beta[dim] / total[dim] : 0.0;
   }
   for (int dir = 0; dir < 2; ++dir) {
-    const auto& branch = dir == 0 ? branch1_ : branch2_;
-    const double sign = dir == 0 ? -1.0 : 1.0;  // Move p1 towards p2 and p2 towards p1 (+) Z.
-    const std::size_t begin = dir == 0 ? 0 : split;
-    const std::size_t end = dir == 0 ? split : free_.size();
+    // Move p1 towards p2 and p2 towards p1 (+) Z: the first branch's shares are negated (a
+    // negated quotient is the quotient of the negated dividend, exactly).
+    const bool first = dir == 0;
+    const std::size_t begin = first ? 0 : split;
+    const std::size_t end = first ? split : length;
     for (std::size_t f = begin; f < end; ++f) {
-      const int v = free_[f];
-      param_[U(v)] += (sign * t_edge / age_[U(v)]) * beta.cwiseProduct(inv_precond_[U(v)]);
+      const int v = free[f];
+      const double share = first ? -shares_[f] : shares_[f];
+      param_[U(v)] += share * beta.cwiseProduct(inv_precond_[U(v)]);
     }
     // Poses along the branch, from the top down (TORO's updatePoseChain; PoseFromParam).
-    for (auto it = branch.rbegin(); it != branch.rend(); ++it) {
-      const int p = parent_[U(*it)];
-      pose_[U(*it)] = p < 0 ? param_[U(*it)] : Eigen::Vector3d(pose_[U(p)] + param_[U(*it)]);
+    const std::uint32_t lo = first ? path.begin : path.split;
+    const std::uint32_t hi = first ? path.split : path.end;
+    for (std::uint32_t i = hi; i > lo; --i) {
+      const int v = nodes[i - 1];
+      const int p = parent_[U(v)];
+      pose_[U(v)] = p < 0 ? param_[U(v)] : Eigen::Vector3d(pose_[U(p)] + param_[U(v)]);
     }
   }
 }
