@@ -14,8 +14,8 @@ namespace gridslam::app {
 
 Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& result,
                        const std::vector<RobotOutput>& robots, const std::string& trajectory_frame,
-                       const std::string& config_yaml, nlohmann::json report,
-                       ImageBuffer* pictures) {
+                       const std::string& config_yaml, nlohmann::json report, ImageBuffer* pictures,
+                       int threads) {
   const std::filesystem::path out(dir);
   ImageBuffer own;
   ImageBuffer& buffer = pictures != nullptr ? *pictures : own;
@@ -40,9 +40,10 @@ Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& res
     fusion::FusionOptions fusion;  // thresholds only
     const OccupancyImage image = fusion::ToOccupancy(result.maps[c], fusion);
     GRIDSLAM_RETURN_IF_ERROR(io::WriteMap((out / (stem + ".yaml")).string(), stem + ".pgm", image));
-    GRIDSLAM_RETURN_IF_ERROR(WriteMapPicture((out / (stem + ".png")).string(), image, buffer));
+    GRIDSLAM_RETURN_IF_ERROR(
+        WriteMapPicture((out / (stem + ".png")).string(), image, buffer, threads));
     GRIDSLAM_RETURN_IF_ERROR(WriteGraphPicture((out / (stem + "_graph.png")).string(), image,
-                                               result, static_cast<int>(c), buffer));
+                                               result, static_cast<int>(c), buffer, threads));
     nlohmann::json robots_in = nlohmann::json::array();
     for (std::size_t r = 0; r < robots.size(); ++r) {
       if (result.component_of_robot[r] == static_cast<int>(c)) {

@@ -30,6 +30,6 @@ struct RobotOutput {
 Status WriteMapOutputs(const std::string& dir, const pipeline::MapperResult& result,
                        const std::vector<RobotOutput>& robots, const std::string& trajectory_frame,
                        const std::string& config_yaml, nlohmann::json report,
-                       ImageBuffer* pictures = nullptr);
+                       ImageBuffer* pictures = nullptr, int threads = 1);
 
 }  // namespace gridslam::app

@@ -145,16 +145,17 @@ double TickSpacing(double length_m) {
   return 10.0 * power;
 }
 
-Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures) {
+Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures,
+                       int threads) {
   Canvas canvas =
       MakeCanvas(map, 1, pictures);  // black, white and grey: one channel is a third to encode
   DrawAxesAndScale(canvas);
-  return io::WritePng(path, canvas.image);
+  return io::WritePng(path, canvas.image, threads);
 }
 
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
-                         const pipeline::MapperResult& result, int component,
-                         ImageBuffer& pictures) {
+                         const pipeline::MapperResult& result, int component, ImageBuffer& pictures,
+                         int threads) {
   Canvas canvas = MakeCanvas(map, 3, pictures);
   std::vector<std::size_t> robots;
   for (std::size_t r = 0; r < result.trajectories.size(); ++r) {
@@ -212,7 +213,7 @@ Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
   cv::line(canvas.image, cv::Point(corner.x + 6, y), cv::Point(corner.x + 24, y), kClosureColour,
            2);
   entry("loop closure");
-  return io::WritePng(path, canvas.image);
+  return io::WritePng(path, canvas.image, threads);
 }
 
 }  // namespace gridslam::app

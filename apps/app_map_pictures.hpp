@@ -25,13 +25,14 @@ double TickSpacing(double length_m);
 
 /// map.png: the occupancy map (free white, occupied black, unknown grey) with axes in metres of
 /// the map frame along the left and bottom edges and a scale bar; an 8-bit grey PNG, drawn in
-/// `pictures`.
-Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures);
+/// `pictures`, compressed by up to `threads` threads.
+Status WriteMapPicture(const std::string& path, const OccupancyImage& map, ImageBuffer& pictures,
+                       int threads = 1);
 
 /// map_graph.png: map.png's picture plus the trajectories of the robots of map `component`, the
 /// key maps, the accepted loop closures and a legend naming each.
 Status WriteGraphPicture(const std::string& path, const OccupancyImage& map,
-                         const pipeline::MapperResult& result, int component,
-                         ImageBuffer& pictures);
+                         const pipeline::MapperResult& result, int component, ImageBuffer& pictures,
+                         int threads = 1);
 
 }  // namespace gridslam::app

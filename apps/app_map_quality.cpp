@@ -75,7 +75,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     cv::Mat image = buffer.Image(limits.Height(), limits.Width(), CV_8UC3);
     quality::RenderQualityImage(result.maps[c], fusion, share, threads, image);
     const std::string path = (std::filesystem::path(dir) / name).string();
-    GRIDSLAM_RETURN_IF_ERROR(io::WritePng(path, image));
+    GRIDSLAM_RETURN_IF_ERROR(io::WritePng(path, image, threads));
     per_map.push_back({{"image", name},
                        {"score", check.stats.Score()},
                        {"suspect", check.stats.Suspect(options)},

@@ -22,11 +22,12 @@
 namespace gridslam::io {
 
 /// The PNG file of `image`: CV_8UC1 (grey), CV_8UC3 (B, G, R) or CV_8UC4 (B, G, R, A), any row
-/// stride; not empty. InvalidInput for other types.
-Result<std::string> EncodePng(const cv::Mat& image);
+/// stride; not empty. InvalidInput for other types. Images of more than 8 MB are compressed in
+/// up to `threads` bands of rows at once; the pixels decoded are the same for any `threads`.
+Result<std::string> EncodePng(const cv::Mat& image, int threads = 1);
 
 /// EncodePng written atomically to `path` (io::WriteFileAtomically).
-Status WritePng(const std::string& path, const cv::Mat& image);
+Status WritePng(const std::string& path, const cv::Mat& image, int threads = 1);
 
 /// Decodes an image file's bytes as cv::imdecode(bytes, cv::IMREAD_UNCHANGED) does; `path` names
 /// the file in errors. InvalidInput when the bytes do not decode, RuntimeError when OpenCV's codec
