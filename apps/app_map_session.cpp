@@ -64,7 +64,7 @@ Result<std::string> MapSession::Write(const std::string& dir, const pipeline::Ma
   const std::string config =
       "# " + producer + ": effective configuration\n" + io::OptionsToYaml(options_);
   GRIDSLAM_RETURN_IF_ERROR(WriteMapOutputs(dir, result, robots_, options_.eval.trajectory_frame,
-                                           config, report, &pictures));
+                                           config, report, &pictures, options_.compute.Threads()));
   return quality.value().summary;
 }
 
