@@ -4,18 +4,24 @@
 // SURF-64 (integral image, Fast-Hessian, orientation, descriptor, and the stages alone), U-SURF,
 // SURF-128, the whole description from the obstacle image, and OpenCV's SIFT, ORB and AKAZE on the
 // same image for reference (OpenCV limited to one thread). Counter `keypoints` = features per
-// image.
+// image. The key-map side of the description: the geometry (distance field and obstacle points)
+// of a synthetic key map's cells, and its whole description.
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 #include <opencv2/features2d.hpp>
 
+#include "gridslam/description/key_map_cells.hpp"
+#include "gridslam/description/keymap_describer.hpp"
 #include "gridslam/features/fast_hessian.hpp"
 #include "gridslam/features/integral_image.hpp"
 #include "gridslam/features/surf_descriptor.hpp"
 #include "gridslam/features/surf_feature2d.hpp"
 #include "gridslam/features/synthetic_keymap.hpp"
+#include "gridslam/keymap/key_map.hpp"
 
 namespace {
 
@@ -110,6 +116,92 @@ void BM_OrientationAndDescriptor(benchmark::State& state) {
   state.counters["keypoints"] = static_cast<double>(keypoints.size());
 }
 
+// The orientation and the descriptor alone, at the detected keypoints.
+void BM_AssignOrientation(benchmark::State& state) {
+  const gridslam::features::IntegralImage integral(
+      gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1));
+  const std::vector<cv::KeyPoint> keypoints =
+      gridslam::features::DetectFastHessian(integral, SurfOptions{});
+  for (auto _ : state) {
+    for (const cv::KeyPoint& kp : keypoints) {
+      benchmark::DoNotOptimize(gridslam::features::AssignOrientation(
+          integral, kp.pt.x, kp.pt.y, gridslam::features::ScaleOfSize(kp.size)));
+    }
+  }
+  state.counters["keypoints"] = static_cast<double>(keypoints.size());
+}
+
+void BM_SurfDescriptor(benchmark::State& state) {
+  const gridslam::features::IntegralImage integral(
+      gridslam::features::MakeSyntheticKeyMap(static_cast<int>(state.range(0)), 1));
+  const std::vector<cv::KeyPoint> keypoints =
+      gridslam::features::DetectFastHessian(integral, SurfOptions{});
+  std::vector<float> descriptor(gridslam::features::kSurfDescriptorSize);
+  for (auto _ : state) {
+    for (const cv::KeyPoint& kp : keypoints) {
+      // A fixed, non-trivial orientation: the rotated sampling grid as in the pipeline.
+      gridslam::features::ComputeSurfDescriptor(integral, kp.pt.x, kp.pt.y,
+                                                gridslam::features::ScaleOfSize(kp.size), 0.7F,
+                                                false, descriptor.data());
+      benchmark::DoNotOptimize(descriptor.data());
+    }
+  }
+  state.counters["keypoints"] = static_cast<double>(keypoints.size());
+}
+
+// Cells of a synthetic key map at 5 cm: the walls are obstacles, the disc the sensor covered is
+// free, the corners beyond it unknown.
+gridslam::Grid2D<float> SyntheticLogOdds(int size) {
+  const cv::Mat obstacles = gridslam::features::RenderObstacleImage(
+      gridslam::features::MakeSyntheticWalls(size, 1), size);
+  gridslam::Grid2D<float> log_odds(gridslam::MapLimits(0.05, Eigen::Vector2d::Zero(), size, size),
+                                   0.0F);
+  const double radius = 0.45 * size;
+  for (int j = 0; j < size; ++j) {
+    for (int i = 0; i < size; ++i) {
+      const double r = std::hypot(i - 0.5 * size, j - 0.5 * size);
+      if (obstacles.at<std::uint8_t>(j, i) == 0) {
+        log_odds(i, j) = 2.0F;
+      } else if (r < radius) {
+        log_odds(i, j) = -1.0F;
+      }
+    }
+  }
+  return log_odds;
+}
+
+gridslam::description::KeyMapCells SyntheticCells(int size) {
+  return {SyntheticLogOdds(size), 0.62F, 0.05F};
+}
+
+void BM_KeyMapGeometry(benchmark::State& state) {
+  const gridslam::description::KeyMapCells cells = SyntheticCells(static_cast<int>(state.range(0)));
+  gridslam::distance_transform::SquaredDistanceField field;
+  gridslam::description::SquaredObstacleDistances(cells, field);
+  for (auto _ : state) {
+    const gridslam::description::KeyMapGeometry geometry =
+        gridslam::description::ComputeGeometry(cells, field);
+    benchmark::DoNotOptimize(geometry.distance.data());
+  }
+}
+
+// KeyMapDescriber::Describe of the synthetic key map: cells, distance transform, images,
+// geometry and SURF, as the pipeline describes each key map.
+void BM_DescribeCells(benchmark::State& state) {
+  const int size = static_cast<int>(state.range(0));
+  gridslam::keymap::KeyMap key_map;
+  key_map.log_odds = SyntheticLogOdds(size);
+  const gridslam::description::KeyMapDescriber describer(
+      gridslam::description::DescriptionOptions{});
+  std::size_t features = 0;
+  for (auto _ : state) {
+    const gridslam::description::KeyMapDescription description = describer.Describe(key_map);
+    features = description.features.points.size();
+    benchmark::DoNotOptimize(description.distance.data());
+  }
+  state.counters["keypoints"] = static_cast<double>(features);
+}
+
 }  // namespace
 
 BENCHMARK(BM_Surf64)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
@@ -131,3 +223,7 @@ BENCHMARK_CAPTURE(BM_OpenCv, akaze, std::string("akaze"))
 BENCHMARK(BM_IntegralImage)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FastHessian)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OrientationAndDescriptor)->Arg(300)->Arg(400)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AssignOrientation)->Arg(300)->Arg(400)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SurfDescriptor)->Arg(300)->Arg(400)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_KeyMapGeometry)->Arg(300)->Arg(400)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DescribeCells)->Arg(300)->Arg(400)->Unit(benchmark::kMicrosecond);
