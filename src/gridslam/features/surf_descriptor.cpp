@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "gridslam/common/check.hpp"
+#include "gridslam/features/internal/angle_order.hpp"
 
 namespace gridslam::features {
 namespace {
@@ -21,16 +24,23 @@ inline int FloorToInt(float v) {
   return static_cast<float>(t) > v ? t - 1 : t;
 }
 
+// c ? t : f, chosen by bit masks: a select the vectoriser takes (a conditional float operation
+// would stop it, as it might trap) and the compiler keeps branch-free.
+inline float Select(bool c, float t, float f) {
+  const std::uint32_t mask = 0U - static_cast<std::uint32_t>(c);
+  return std::bit_cast<float>((std::bit_cast<std::uint32_t>(t) & mask) |
+                              (std::bit_cast<std::uint32_t>(f) & ~mask));
+}
+
 // atan2(y, x) within about 1e-5 rad: a minimax polynomial for atan on [0, 1] and the octant
-// fix-ups. Used only to order the orientation samples by angle.
+// fix-ups. Used only to order the orientation samples by angle. Branch-free, so that the loop over
+// the samples vectorises: the fix-ups are computed always and selected, as is 0 for (0, 0) (where
+// z is NaN); each value is the one the branches gave.
 inline float FastAtan2(float y, float x) {
   const float ax = std::abs(x);
   const float ay = std::abs(y);
   const float lo = std::min(ax, ay);
   const float hi = std::max(ax, ay);
-  if (hi == 0.0F) {
-    return 0.0F;
-  }
   const float z = lo / hi;
   const float z2 = z * z;
   float a =
@@ -40,13 +50,10 @@ inline float FastAtan2(float y, float x) {
              z2 * (0.19354346F + z2 * (-0.11643287F + z2 * (0.05265332F + z2 * -0.01172120F)))));
   constexpr auto kHalfPi = static_cast<float>(std::numbers::pi / 2.0);
   constexpr auto kPi = static_cast<float>(std::numbers::pi);
-  if (ay > ax) {
-    a = kHalfPi - a;
-  }
-  if (x < 0.0F) {
-    a = kPi - a;
-  }
-  return y < 0.0F ? -a : a;
+  a = Select(ay > ax, kHalfPi - a, a);
+  a = Select(x < 0.0F, kPi - a, a);
+  a = Select(y < 0.0F, -a, a);
+  return Select(hi == 0.0F, 0.0F, a);
 }
 
 // Haar wavelets where a box leaves the image: the difference of the means of the halves' parts
@@ -69,15 +76,10 @@ Haar ClippedHaar(const IntegralImage& ii, int px, int py, int h) {
   return r;
 }
 
-// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy) (pixel centres at
-// integer coordinates, so the boundary left of pixel px lies at px − 0.5): dx = right − left,
-// dy = bottom − top, as box sums [intensity · px²].
-inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
-  const int px = FloorToInt(cx + 1.0F);
-  const int py = FloorToInt(cy + 1.0F);
-  if (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height()) {
-    return ClippedHaar(ii, px, py, h);
-  }
+// Haar wavelets of side 2h centred on the pixel boundary left of and above pixel (px, py), as box
+// sums [intensity · px²]: dx = right − left, dy = bottom − top. Contract: the boxes fit, px − h >=
+// 0, py − h >= 0, px + h <= width, py + h <= height.
+inline Haar InteriorHaar(const IntegralImage& ii, int px, int py, int h) {
   const std::int32_t* top = ii.Row(py - h);
   const std::int32_t* mid = ii.Row(py);
   const std::int32_t* bot = ii.Row(py + h);
@@ -86,6 +88,29 @@ inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
   const std::int32_t dx = bot[c] - 2 * bot[px] + bot[a] - top[c] + 2 * top[px] - top[a];
   const std::int32_t dy = bot[c] - bot[a] - 2 * mid[c] + 2 * mid[a] + top[c] - top[a];
   return {static_cast<float>(dx), static_cast<float>(dy)};
+}
+
+// The pixel whose top-left boundary is nearest to (cx, cy) (pixel centres at integer coordinates,
+// so the boundary left of pixel px lies at px − 0.5). Non-decreasing in cx and cy.
+inline int BoundaryPixel(float c) { return FloorToInt(c + 1.0F); }
+
+// True if the wavelets of side 2h fit in the image at every point of [x0, x1] × [y0, y1]: then
+// the samples inside need no clipping (BoundaryPixel is monotonic).
+inline bool HaarFits(const IntegralImage& ii, float x0, float y0, float x1, float y1, int h) {
+  return BoundaryPixel(x0) - h >= 0 && BoundaryPixel(y0) - h >= 0 &&
+         BoundaryPixel(x1) + h <= ii.width() && BoundaryPixel(y1) + h <= ii.height();
+}
+
+// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy); clipped where the
+// boxes leave the image unless kFits (the caller checked that they fit).
+template <bool kFits = false>
+inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
+  const int px = BoundaryPixel(cx);
+  const int py = BoundaryPixel(cy);
+  if (!kFits && (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height())) {
+    return ClippedHaar(ii, px, py, h);
+  }
+  return InteriorHaar(ii, px, py, h);
 }
 
 // Orientation samples: grid points (i, j) [units of s] with i² + j² < 36 and their Gaussian
@@ -100,6 +125,7 @@ struct OrientationSample {
 struct OrientationPattern {
   std::array<OrientationSample, kMaxOrientationSamples> samples{};
   int count = 0;
+  float extent = 0.0F;  // the largest |i| and |j|
 };
 const OrientationPattern& GetOrientationPattern() {
   static const OrientationPattern pattern = [] {
@@ -111,6 +137,7 @@ const OrientationPattern& GetOrientationPattern() {
           const double w = std::exp(-(i * i + j * j) / (2.0 * kSigma * kSigma));
           p.samples[static_cast<std::size_t>(p.count++)] = {
               static_cast<float>(i), static_cast<float>(j), static_cast<float>(w)};
+          p.extent = std::max(p.extent, static_cast<float>(std::abs(i)));
         }
       }
     }
@@ -140,37 +167,119 @@ const GridWeights& DescriptorWeights() {
   return weights;
 }
 
+// The samples with a response, in pattern order: the angle of the response and its
+// Gaussian-weighted components (structure of arrays, so that the angle loop vectorises; the
+// entries from n on are not set).
+struct OrientationPoints {
+  std::array<float, kMaxOrientationSamples> angle;
+  std::array<float, kMaxOrientationSamples> dx;
+  std::array<float, kMaxOrientationSamples> dy;
+  int n = 0;
+};
+
+// Appends the wavelet response of side 2h at each of the pattern's samples around (x, y) that is
+// not (0, 0) to `points` (dx, dy) and its weight to `weight`, in pattern order. Each is written
+// always and kept (n advanced) only if not (0, 0): no branch to mispredict.
+template <bool kFits>
+int CollectResponses(const IntegralImage& integral, float x, float y, float scale, int h,
+                     OrientationPoints& points, float* weight) {
+  const OrientationPattern& pattern = GetOrientationPattern();
+  int n = 0;
+  for (int s = 0; s < pattern.count; ++s) {
+    const OrientationSample& p = pattern.samples[static_cast<std::size_t>(s)];
+    const Haar r = HaarAt<kFits>(integral, x + p.i * scale, y + p.j * scale, h);
+    const auto k = static_cast<std::size_t>(n);
+    points.dx[k] = r.dx;
+    points.dy[k] = r.dy;
+    weight[k] = p.weight;
+    n += r.dx != 0.0F || r.dy != 0.0F ? 1 : 0;
+  }
+  return n;
+}
+
+// The wavelet responses of side 2h at the pattern's samples around (x, y): those not (0, 0),
+// packed in pattern order, as the angle and the weighted components.
+void CollectOrientationPoints(const IntegralImage& integral, float x, float y, float scale, int h,
+                              OrientationPoints& points) {
+  // The samples' extreme coordinates, computed as theirs: if the wavelets fit there, they fit at
+  // every sample and the per-sample clipping test is skipped.
+  const float e = GetOrientationPattern().extent;
+  const bool fits =
+      HaarFits(integral, x + -e * scale, y + -e * scale, x + e * scale, y + e * scale, h);
+  std::array<float, kMaxOrientationSamples> weight;  // written before read, like `points`
+  const int n = fits ? CollectResponses<true>(integral, x, y, scale, h, points, weight.data())
+                     : CollectResponses<false>(integral, x, y, scale, h, points, weight.data());
+  for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+    points.angle[k] = FastAtan2(points.dy[k], points.dx[k]);
+    points.dx[k] *= weight[k];
+    points.dy[k] *= weight[k];
+  }
+  points.n = n;
+}
+
+// The points in ascending angle twice round the circle: entries n .. 2n − 1 repeat the first n
+// with 2π added to the angle, so that the sliding window never wraps an index.
+struct CircularPoints {
+  std::array<float, 2 * kMaxOrientationSamples> angle;
+  std::array<float, 2 * kMaxOrientationSamples> dx;
+  std::array<float, 2 * kMaxOrientationSamples> dy;
+};
+
+// Sorts the points by angle into `circle`. The window sums depend on the order of equal angles, so
+// with ties the order is the one std::sort gives the points in pattern order (its result follows
+// from the comparisons alone); without ties the ascending order is unique and the bucket sort's.
+void SortAroundCircle(const OrientationPoints& points, CircularPoints& circle) {
+  static_assert(kMaxOrientationSamples <= internal::kMaxAngleKeys);
+  const int n = points.n;
+  const auto size = static_cast<std::size_t>(n);
+  std::array<std::uint8_t, kMaxOrientationSamples> order;
+  if (internal::OrderByAngle(points.angle.data(), n, order.data())) {
+    for (std::size_t k = 0; k < size; ++k) {
+      circle.angle[k] = points.angle[order[k]];
+      circle.dx[k] = points.dx[order[k]];
+      circle.dy[k] = points.dy[order[k]];
+    }
+  } else {
+    struct Point {
+      float angle;
+      float dx;
+      float dy;
+    };
+    std::array<Point, kMaxOrientationSamples> sorted;
+    for (std::size_t k = 0; k < size; ++k) {
+      sorted[k] = {points.angle[k], points.dx[k], points.dy[k]};
+    }
+    std::sort(sorted.begin(), sorted.begin() + n,
+              [](const Point& a, const Point& b) { return a.angle < b.angle; });
+    for (std::size_t k = 0; k < size; ++k) {
+      circle.angle[k] = sorted[k].angle;
+      circle.dx[k] = sorted[k].dx;
+      circle.dy[k] = sorted[k].dy;
+    }
+  }
+  constexpr auto kTwoPi = static_cast<float>(2.0 * std::numbers::pi);
+  for (std::size_t k = 0; k < size; ++k) {
+    circle.angle[size + k] = circle.angle[k] + kTwoPi;
+    circle.dx[size + k] = circle.dx[k];
+    circle.dy[size + k] = circle.dy[k];
+  }
+}
+
 }  // namespace
 
 float AssignOrientation(const IntegralImage& integral, float x, float y, float scale) {
   GRIDSLAM_CHECK(scale > 0.0F) << "scale " << scale;
-  const OrientationPattern& pattern = GetOrientationPattern();
   const int h = std::max(1, static_cast<int>(std::lround(2.0F * scale)));  // side 4s
-  struct Point {
-    float angle;
-    float dx;
-    float dy;
-  };
-  std::array<Point, kMaxOrientationSamples> points{};
-  int n = 0;
-  for (int s = 0; s < pattern.count; ++s) {
-    const OrientationSample& p = pattern.samples[static_cast<std::size_t>(s)];
-    const Haar r = HaarAt(integral, x + p.i * scale, y + p.j * scale, h);
-    if (r.dx == 0.0F && r.dy == 0.0F) {
-      continue;
-    }
-    points[static_cast<std::size_t>(n++)] = {FastAtan2(r.dy, r.dx), r.dx * p.weight,
-                                             r.dy * p.weight};
-  }
-  if (n == 0) {
+  OrientationPoints points;
+  CollectOrientationPoints(integral, x, y, scale, h, points);
+  if (points.n == 0) {
     return 0.0F;
   }
-  std::sort(points.begin(), points.begin() + n,
-            [](const Point& a, const Point& b) { return a.angle < b.angle; });
+  CircularPoints circle;
+  SortAroundCircle(points, circle);
   // Every distinct window [θ_a, θ_a + π/3): two pointers around the circle.
   constexpr auto kWindow = static_cast<float>(std::numbers::pi / 3.0);
-  constexpr auto kTwoPi = static_cast<float>(2.0 * std::numbers::pi);
-  const auto at = [&](int e) -> const Point& { return points[static_cast<std::size_t>(e % n)]; };
+  const int n = points.n;
   double sum_x = 0.0;
   double sum_y = 0.0;
   double best_x = 0.0;
@@ -178,10 +287,10 @@ float AssignOrientation(const IntegralImage& integral, float x, float y, float s
   double best_norm2 = -1.0;
   int e = 0;
   for (int a = 0; a < n; ++a) {
-    const float start = at(a).angle;
-    while (e < a + n && at(e).angle + (e >= n ? kTwoPi : 0.0F) - start < kWindow) {
-      sum_x += at(e).dx;
-      sum_y += at(e).dy;
+    const float start = circle.angle[static_cast<std::size_t>(a)];
+    while (e < a + n && circle.angle[static_cast<std::size_t>(e)] - start < kWindow) {
+      sum_x += circle.dx[static_cast<std::size_t>(e)];
+      sum_y += circle.dy[static_cast<std::size_t>(e)];
       ++e;
     }
     const double norm2 = sum_x * sum_x + sum_y * sum_y;
@@ -190,8 +299,8 @@ float AssignOrientation(const IntegralImage& integral, float x, float y, float s
       best_x = sum_x;
       best_y = sum_y;
     }
-    sum_x -= at(a).dx;
-    sum_y -= at(a).dy;
+    sum_x -= circle.dx[static_cast<std::size_t>(a)];
+    sum_y -= circle.dy[static_cast<std::size_t>(a)];
   }
   return static_cast<float>(std::atan2(best_y, best_x));
 }

@@ -1,12 +1,17 @@
 #include "gridslam/features/surf_descriptor.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
+#include "gridslam/features/internal/angle_order.hpp"
 #include "gridslam/features/synthetic_keymap.hpp"
 
 namespace gridslam::features {
@@ -139,6 +144,86 @@ TEST(SurfDescriptorTest, QuarterTurnRotatesOrientationAndKeepsDescriptor) {
     }
   }
   EXPECT_EQ(checked, 9);
+}
+
+// The bits of the orientation and of both descriptors (FNV-1a of their floats' bits) at points
+// inside and across the border, as the implementation before the speed-ups of issue 19 gave them:
+// those must not change the results at all.
+TEST(SurfDescriptorTest, BitForBitAsBeforeTheSpeedUps) {
+  struct Expected {
+    float x, y, scale;
+    std::uint32_t angle_bits;
+    std::uint64_t hash64, hash128;
+  };
+  const Expected expected[] = {
+      {80.3719F, 95.6413F, 2.1379F, 0x3ef5d335, 0xaa8fa68fcc8f5eb3ULL, 0x4c3dac9c95855fb9ULL},
+      {150.8291F, 120.1937F, 5.2163F, 0x403f95b8, 0x63a2d292c2e37c28ULL, 0xaf2d6c61085c4afcULL},
+      {121.4357F, 60.7123F, 3.3721F, 0x3f3df1a2, 0x30d82ed844b1d9d8ULL, 0xa3e99086def83979ULL},
+      {2.5F, 100.25F, 2.0F, 0xc04165c0, 0x3e9b0b3b3f378f77ULL, 0x19929adfc19654eaULL},
+      {237.75F, 3.125F, 4.5F, 0xbfc7a7a6, 0x2dfe9183a6eb6f6cULL, 0x97869c65d45dc0feULL},
+      {60.0F, 60.0F, 12.0F, 0x4045dd27, 0xa2382f34e68efc63ULL, 0xb79b6113ca03541bULL},
+  };
+  const IntegralImage integral(MakeSyntheticKeyMap(240, 3));
+  const auto hash = [](const std::vector<float>& d) {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (const float v : d) {
+      h = (h ^ std::bit_cast<std::uint32_t>(v)) * 1099511628211ULL;
+    }
+    return h;
+  };
+  for (const Expected& e : expected) {
+    const float angle = AssignOrientation(integral, e.x, e.y, e.scale);
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(angle), e.angle_bits) << e.x << " " << e.y;
+    std::vector<float> d64(kSurfDescriptorSize);
+    std::vector<float> d128(kSurfExtendedDescriptorSize);
+    ComputeSurfDescriptor(integral, e.x, e.y, e.scale, angle, false, d64.data());
+    ComputeSurfDescriptor(integral, e.x, e.y, e.scale, angle, true, d128.data());
+    EXPECT_EQ(hash(d64), e.hash64) << e.x << " " << e.y;
+    EXPECT_EQ(hash(d128), e.hash128) << e.x << " " << e.y;
+  }
+}
+
+// Distinct angles: the order std::sort gives, clustered or spread, inside [−π, π] or not.
+TEST(AngleOrderTest, DistinctAnglesInTheSortedOrder) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> spread(-3.1415927F, 3.1415927F);
+  std::normal_distribution<float> cluster(0.7F, 0.001F);
+  std::uniform_real_distribution<float> wide(-50.0F, 50.0F);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = trial % internal::kMaxAngleKeys;
+    std::vector<float> angle(static_cast<std::size_t>(n));
+    for (float& a : angle) {
+      a = trial % 3 == 0 ? spread(rng) : (trial % 3 == 1 ? cluster(rng) : wide(rng));
+    }
+    std::vector<int> expected(angle.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      expected[k] = static_cast<int>(k);
+    }
+    std::sort(expected.begin(), expected.end(), [&](int a, int b) {
+      return angle[static_cast<std::size_t>(a)] < angle[static_cast<std::size_t>(b)];
+    });
+    if (std::adjacent_find(expected.begin(), expected.end(), [&](int a, int b) {
+          return angle[static_cast<std::size_t>(a)] == angle[static_cast<std::size_t>(b)];
+        }) != expected.end()) {
+      continue;  // a tie drawn by chance
+    }
+    std::vector<std::uint8_t> order(angle.size());
+    ASSERT_TRUE(internal::OrderByAngle(angle.data(), n, order.data())) << trial;
+    EXPECT_TRUE(std::equal(order.begin(), order.end(), expected.begin())) << trial;
+  }
+}
+
+// Equal angles: reported, and the order is still ascending with the ties in index order.
+TEST(AngleOrderTest, TiesAreReported) {
+  const std::vector<float> angle = {0.5F, -1.0F, 0.5F, 3.0F, -1.0F, 0.25F};
+  std::vector<std::uint8_t> order(angle.size());
+  EXPECT_FALSE(internal::OrderByAngle(angle.data(), static_cast<int>(angle.size()), order.data()));
+  EXPECT_EQ(order, (std::vector<std::uint8_t>{1, 4, 5, 0, 2, 3}));
+  const float one = 1.0F;
+  std::uint8_t single = 7;
+  EXPECT_TRUE(internal::OrderByAngle(&one, 1, &single));
+  EXPECT_EQ(single, 0);
+  EXPECT_TRUE(internal::OrderByAngle(nullptr, 0, nullptr));
 }
 
 }  // namespace
