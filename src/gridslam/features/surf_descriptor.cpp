@@ -101,16 +101,20 @@ inline bool HaarFits(const IntegralImage& ii, float x0, float y0, float x1, floa
          BoundaryPixel(x1) + h <= ii.width() && BoundaryPixel(y1) + h <= ii.height();
 }
 
-// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy); clipped where the
+// Haar wavelets of side 2h centred on the top-left boundary of pixel (px, py); clipped where the
 // boxes leave the image unless kFits (the caller checked that they fit).
-template <bool kFits = false>
-inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
-  const int px = BoundaryPixel(cx);
-  const int py = BoundaryPixel(cy);
+template <bool kFits>
+inline Haar HaarAtPixel(const IntegralImage& ii, int px, int py, int h) {
   if (!kFits && (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height())) {
     return ClippedHaar(ii, px, py, h);
   }
   return InteriorHaar(ii, px, py, h);
+}
+
+// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy).
+template <bool kFits = false>
+inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
+  return HaarAtPixel<kFits>(ii, BoundaryPixel(cx), BoundaryPixel(cy), h);
 }
 
 // Orientation samples: grid points (i, j) [units of s] with i² + j² < 36 and their Gaussian
@@ -147,24 +151,210 @@ const OrientationPattern& GetOrientationPattern() {
 }
 
 // Descriptor samples: 20 × 20 points at ((k − 9.5)s, (m − 9.5)s) and their Gaussian weight,
-// σ = 3.3s (Bay et al. 2008, §4.2).
+// σ = 3.3s (Bay et al. 2008, §4.2), in 4 × 4 sub-regions of 5 × 5.
 constexpr int kGrid = 20;
+constexpr int kRegionSide = 5;
+constexpr int kRegionsPerRow = kGrid / kRegionSide;
+
+// The samples of a grid row are taken in slot order j = 4·kk + q for column k = 5q + kk: the
+// five slots 4·kk + q of sub-region column q hold its columns in increasing order, and the four
+// sub-regions' samples of one kk are adjacent, so that their sums are added as one vector.
+constexpr int ColumnOfSlot(int j) {
+  return kRegionSide * (j % kRegionsPerRow) + j / kRegionsPerRow;
+}
+static_assert(ColumnOfSlot(0) == 0 && ColumnOfSlot(kGrid - 1) == kGrid - 1);
+
+// The weights by row m and slot j.
 using GridWeights = std::array<float, static_cast<std::size_t>(kGrid) * kGrid>;
 const GridWeights& DescriptorWeights() {
   static const GridWeights weights = [] {
     GridWeights w{};
     constexpr double kSigma = 3.3;
     for (int m = 0; m < kGrid; ++m) {
-      for (int k = 0; k < kGrid; ++k) {
-        const double u = k - 9.5;
+      for (int j = 0; j < kGrid; ++j) {
+        const double u = ColumnOfSlot(j) - 9.5;
         const double v = m - 9.5;
-        w[static_cast<std::size_t>(m) * kGrid + static_cast<std::size_t>(k)] =
+        w[static_cast<std::size_t>(m) * kGrid + static_cast<std::size_t>(j)] =
             static_cast<float>(std::exp(-(u * u + v * v) / (2.0 * kSigma * kSigma)));
       }
     }
     return w;
   }();
   return weights;
+}
+
+// The rotated sampling grid of one descriptor. Sample (k, m) lies at (u, v) = ((k − 9.5)s,
+// (m − 9.5)s) in the keypoint's frame, at x + u·cos − v·sin, y + u·sin + v·cos in the image; the
+// terms that depend on k or on m alone are computed once, with the same float operations
+// (sums grouped left to right as written), so the coordinates are bit for bit the same. The
+// k terms are kept by slot (ColumnOfSlot).
+struct DescriptorFrame {
+  float co = 1.0F;
+  float si = 0.0F;
+  std::array<float, kGrid> x_u{};    // x + u_k·cos, by slot
+  std::array<float, kGrid> y_u{};    // y + u_k·sin, by slot
+  std::array<float, kGrid> v_sin{};  // v_m·sin
+  std::array<float, kGrid> v_cos{};  // v_m·cos
+
+  // The image coordinates of the sample in slot j of row m.
+  [[nodiscard]] float X(int j, int m) const {
+    return x_u[static_cast<std::size_t>(j)] - v_sin[static_cast<std::size_t>(m)];
+  }
+  [[nodiscard]] float Y(int j, int m) const {
+    return y_u[static_cast<std::size_t>(j)] + v_cos[static_cast<std::size_t>(m)];
+  }
+  // True if the wavelets of side 2h fit at every sample. The coordinates are monotonic in k and in
+  // m (each float operation rounds monotonically), so their extremes lie at the grid's corners
+  // (columns 0 and 19 are slots 0 and 19).
+  [[nodiscard]] bool HaarFits(const IntegralImage& ii, int h) const {
+    constexpr int kLast = kGrid - 1;
+    const std::array<float, 4> xs = {X(0, 0), X(kLast, 0), X(0, kLast), X(kLast, kLast)};
+    const std::array<float, 4> ys = {Y(0, 0), Y(kLast, 0), Y(0, kLast), Y(kLast, kLast)};
+    const auto [x0, x1] = std::minmax_element(xs.begin(), xs.end());
+    const auto [y0, y1] = std::minmax_element(ys.begin(), ys.end());
+    return features::HaarFits(ii, *x0, *y0, *x1, *y1, h);
+  }
+};
+
+DescriptorFrame MakeDescriptorFrame(float x, float y, float scale, float angle) {
+  DescriptorFrame f;
+  f.co = std::cos(angle);
+  f.si = std::sin(angle);
+  for (int j = 0; j < kGrid; ++j) {
+    const auto slot = static_cast<std::size_t>(j);
+    const float u = (static_cast<float>(ColumnOfSlot(j)) - 9.5F) * scale;
+    f.x_u[slot] = x + u * f.co;
+    f.y_u[slot] = y + u * f.si;
+    const float v = (static_cast<float>(j) - 9.5F) * scale;  // row m = j
+    f.v_sin[slot] = v * f.si;
+    f.v_cos[slot] = v * f.co;
+  }
+  return f;
+}
+
+// InteriorHaar at the 20 pixels (px[j], py[j]) of a descriptor row, where the boxes fit: the table
+// offsets of the top-left corners first (a loop that vectorises), then the eight look-ups each at
+// fixed distances from there. The same integer sums, so the same values.
+void InteriorHaarRow(const IntegralImage& ii, const int* px, const int* py, int h, float* dx,
+                     float* dy) {
+  const int stride = ii.stride();
+  std::array<int, kGrid> top;  // offset of (px − h, py − h); written before it is read
+  for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
+    top[j] = (py[j] - h) * stride + px[j] - h;
+  }
+  const std::int32_t* table = ii.Row(0);
+  const std::ptrdiff_t mid = static_cast<std::ptrdiff_t>(h) * stride;  // rows py, py + h
+  const std::ptrdiff_t bot = 2 * mid;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
+    const std::int32_t* t = table + top[j];  // columns px − h, px, px + h at +0, +h, +2h
+    const std::int32_t ta = t[0];
+    const std::int32_t tp = t[h];
+    const std::int32_t tc = t[2 * h];
+    const std::int32_t ma = t[mid];
+    const std::int32_t mc = t[mid + 2 * h];
+    const std::int32_t ba = t[bot];
+    const std::int32_t bp = t[bot + h];
+    const std::int32_t bc = t[bot + 2 * h];
+    dx[j] = static_cast<float>(bc - 2 * bp + ba - tc + 2 * tp - ta);
+    dy[j] = static_cast<float>(bc - ba - 2 * mc + 2 * ma + tc - ta);
+  }
+}
+
+// The rotated, weighted responses of the 20 samples of grid row m, by slot: rx along the
+// orientation, ry perpendicular to it. The pixel coordinates first (a loop that vectorises), then
+// the wavelets, then the rotation (vectorises too).
+template <bool kFits>
+void RowResponses(const IntegralImage& integral, const DescriptorFrame& f, int m, int h,
+                  const float* weight, float* rx, float* ry) {
+  std::array<int, kGrid> px;  // every array here is written before it is read
+  std::array<int, kGrid> py;
+  for (int j = 0; j < kGrid; ++j) {
+    px[static_cast<std::size_t>(j)] = BoundaryPixel(f.X(j, m));
+    py[static_cast<std::size_t>(j)] = BoundaryPixel(f.Y(j, m));
+  }
+  std::array<float, kGrid> dx;
+  std::array<float, kGrid> dy;
+  if constexpr (kFits) {
+    InteriorHaarRow(integral, px.data(), py.data(), h, dx.data(), dy.data());
+  } else {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
+      const Haar r = HaarAtPixel<false>(integral, px[j], py[j], h);
+      dx[j] = r.dx;
+      dy[j] = r.dy;
+    }
+  }
+  const float co = f.co;
+  const float si = f.si;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
+    rx[j] = weight[j] * (dx[j] * co + dy[j] * si);
+    ry[j] = weight[j] * (-dx[j] * si + dy[j] * co);
+  }
+}
+
+// The standard descriptor's sums: (Σrx, Σry, Σ|rx|, Σ|ry|) of each sub-region, its terms in the
+// order of its samples by row, then column, as one loop over (m, k) added them. The four
+// sub-regions of a band of five rows are summed in locals, lane q for sub-region column q.
+template <bool kFits>
+void StandardSums(const IntegralImage& integral, const DescriptorFrame& f, int h, float* out) {
+  const GridWeights& weights = DescriptorWeights();
+  using Lanes = std::array<float, kRegionsPerRow>;
+  Lanes sx{};
+  Lanes sy{};
+  Lanes ax{};
+  Lanes ay{};
+  for (int m = 0; m < kGrid; ++m) {
+    std::array<float, kGrid> rx;  // written by RowResponses
+    std::array<float, kGrid> ry;
+    RowResponses<kFits>(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
+                        rx.data(), ry.data());
+    for (std::size_t kk = 0; kk < static_cast<std::size_t>(kRegionSide); ++kk) {
+      for (std::size_t q = 0; q < static_cast<std::size_t>(kRegionsPerRow); ++q) {
+        const std::size_t j = kk * kRegionsPerRow + q;
+        sx[q] += rx[j];
+        sy[q] += ry[j];
+        ax[q] += std::abs(rx[j]);
+        ay[q] += std::abs(ry[j]);
+      }
+    }
+    if (m % kRegionSide == kRegionSide - 1) {
+      for (std::size_t q = 0; q < static_cast<std::size_t>(kRegionsPerRow); ++q) {
+        float* d = out + 4 * ((m / kRegionSide) * kRegionsPerRow + static_cast<std::ptrdiff_t>(q));
+        d[0] = sx[q];
+        d[1] = sy[q];
+        d[2] = ax[q];
+        d[3] = ay[q];
+      }
+      sx = {};
+      sy = {};
+      ax = {};
+      ay = {};
+    }
+  }
+}
+
+// The extended descriptor's sums, split by the sign of the other response, added in the same
+// order of the samples into `out` (zeroed by the caller).
+template <bool kFits>
+void ExtendedSums(const IntegralImage& integral, const DescriptorFrame& f, int h, float* out) {
+  const GridWeights& weights = DescriptorWeights();
+  for (int m = 0; m < kGrid; ++m) {
+    std::array<float, kGrid> rx;  // written by RowResponses
+    std::array<float, kGrid> ry;
+    RowResponses<kFits>(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
+                        rx.data(), ry.data());
+    for (int j = 0; j < kGrid; ++j) {
+      const float x = rx[static_cast<std::size_t>(j)];
+      const float y = ry[static_cast<std::size_t>(j)];
+      const int region = (m / kRegionSide) * kRegionsPerRow + j % kRegionsPerRow;
+      float* d = out + 8 * static_cast<std::ptrdiff_t>(region);
+      const int sx = y < 0.0F ? 0 : 2;
+      d[sx] += x;
+      d[sx + 1] += std::abs(x);
+      const int sy = x < 0.0F ? 4 : 6;
+      d[sy] += y;
+      d[sy + 1] += std::abs(y);
+    }
+  }
 }
 
 // The samples with a response, in pattern order: the angle of the response and its
@@ -308,37 +498,17 @@ float AssignOrientation(const IntegralImage& integral, float x, float y, float s
 void ComputeSurfDescriptor(const IntegralImage& integral, float x, float y, float scale,
                            float angle, bool extended, float* out) {
   GRIDSLAM_CHECK(scale > 0.0F) << "scale " << scale;
-  const GridWeights& weights = DescriptorWeights();
   const int h = std::max(1, static_cast<int>(std::lround(scale)));  // side 2s
-  const float co = std::cos(angle);
-  const float si = std::sin(angle);
+  const DescriptorFrame frame = MakeDescriptorFrame(x, y, scale, angle);
+  const bool fits = frame.HaarFits(integral, h);
   const int size = extended ? kSurfExtendedDescriptorSize : kSurfDescriptorSize;
   std::fill(out, out + size, 0.0F);
-  for (int m = 0; m < kGrid; ++m) {
-    const float v = (static_cast<float>(m) - 9.5F) * scale;
-    for (int k = 0; k < kGrid; ++k) {
-      const float u = (static_cast<float>(k) - 9.5F) * scale;
-      const Haar r = HaarAt(integral, x + u * co - v * si, y + u * si + v * co, h);
-      const float w = weights[static_cast<std::size_t>(m) * kGrid + static_cast<std::size_t>(k)];
-      const float rx = w * (r.dx * co + r.dy * si);   // along the orientation
-      const float ry = w * (-r.dx * si + r.dy * co);  // perpendicular to it
-      const int region = (m / 5) * 4 + k / 5;
-      if (!extended) {
-        float* d = out + 4 * static_cast<std::ptrdiff_t>(region);
-        d[0] += rx;
-        d[1] += ry;
-        d[2] += std::abs(rx);
-        d[3] += std::abs(ry);
-      } else {
-        float* d = out + 8 * static_cast<std::ptrdiff_t>(region);
-        const int sx = ry < 0.0F ? 0 : 2;
-        d[sx] += rx;
-        d[sx + 1] += std::abs(rx);
-        const int sy = rx < 0.0F ? 4 : 6;
-        d[sy] += ry;
-        d[sy + 1] += std::abs(ry);
-      }
-    }
+  if (extended) {
+    fits ? ExtendedSums<true>(integral, frame, h, out)
+         : ExtendedSums<false>(integral, frame, h, out);
+  } else {
+    fits ? StandardSums<true>(integral, frame, h, out)
+         : StandardSums<false>(integral, frame, h, out);
   }
   double norm2 = 0.0;
   for (int i = 0; i < size; ++i) {
