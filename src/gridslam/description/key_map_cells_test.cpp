@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -80,6 +81,36 @@ TEST(KeyMapCells, GeometryIsTheSameFromEveryDistanceSource) {
     unknown += from_image.distance.data()[k] == matching::kUnknownDistance ? 1 : 0;
   }
   EXPECT_GT(unknown, 0);
+}
+
+// The distance field by its definition, cell by cell: the distance in metres (float of the distance
+// in cells times the resolution) on observed cells with an obstacle somewhere, unknown elsewhere.
+// Sizes below, at and above a multiple of 64 cells, and a key map observed everywhere (whole words
+// of observed cells).
+TEST(KeyMapCells, GeometryDistanceFollowsItsDefinition) {
+  for (const auto& [width, height, fill] : {std::tuple{83, 61, false}, std::tuple{64, 5, false},
+                                            std::tuple{65, 3, true}, std::tuple{1, 1, true}}) {
+    Grid2D<float> log_odds = RandomLogOdds(width, height, 11U + static_cast<unsigned>(width));
+    if (fill) {  // every cell observed, a few obstacles
+      for (std::size_t k = 0; k < log_odds.size(); ++k) {
+        log_odds.data()[k] = k % 7 == 3 ? 2.0F : -1.0F;
+      }
+    }
+    const KeyMapCells cells(log_odds, 0.6F, 0.05F);
+    const cv::Mat distance_cells = distance_transform::DistanceTransformCells(ObstacleImage(cells));
+    const KeyMapGeometry geometry = ComputeGeometry(cells);
+    ASSERT_EQ(geometry.distance.Width(), width);
+    ASSERT_EQ(geometry.distance.Height(), height);
+    for (int j = 0; j < height; ++j) {
+      for (int i = 0; i < width; ++i) {
+        const float d = distance_cells.at<float>(j, i);
+        const float expected = cells.Observed(i, j) && std::isfinite(d)
+                                   ? static_cast<float>(d * cells.Limits().Resolution())
+                                   : matching::kUnknownDistance;
+        EXPECT_EQ(geometry.distance(i, j), expected) << i << " " << j;
+      }
+    }
+  }
 }
 
 }  // namespace
