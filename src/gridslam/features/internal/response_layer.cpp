@@ -73,13 +73,58 @@ inline __attribute__((always_inline)) void ComputeRow(const RowPointers& r, cons
   }
 }
 
-// The unit-step rows of the first octave dominate the detector's cost: they are compiled also
-// for AVX2, picked at load time where the CPU has it (GCC/Clang function multi-versioning).
-__attribute__((target_clones("avx2", "default"))) void ComputeUnitStepRow(const RowPointers& r,
-                                                                          const FilterGeometry& f,
-                                                                          int k0, int k1,
-                                                                          float norm2, float* out) {
-  ComputeRow<true>(r, f, k0, k1, 1, norm2, out);
+// Per-column differences of a filter's integral-image rows for one output row, so that each box
+// takes two look-ups instead of four: Box(r0, r1, c0, c1) = V[c1] − V[c0] with V = r1 − r0.
+// Dxx = (Q[x+b+1] − Q[x−b]) − 3·(Q[x+lo+1] − Q[x−lo]) with Q = q1 − q0; Dyy = E[x+l] − E[x−l+1]
+// with E = (yb − ya) − 3·(yd − yc); Dxy = F[x] − F[x−l] − F[x+l+1] + F[x+1] with
+// F = (p1 − p0) − (p3 − p2). Integer sums, exact (no intermediate leaves the int32 range of the
+// table's differences), so the same values as SumsAt's.
+struct ColumnDifferences {
+  std::vector<std::int32_t> q;
+  std::vector<std::int32_t> e;
+  std::vector<std::int32_t> f;
+};
+
+// det(H_approx) of samples k0 .. k1 of a row at unit step: the column differences over the columns
+// the filters read, then the responses (both loops vectorise). The unit-step rows of the first
+// octave dominate the detector's cost: compiled also for AVX2, picked at load time where the CPU
+// has it (GCC/Clang function multi-versioning). The float operations are ComputeRow's.
+__attribute__((target_clones("avx2", "default"))) void ComputeUnitStepRow(
+    const RowPointers& r, const FilterGeometry& f, int k0, int k1, float norm2, float* out,
+    ColumnDifferences& columns) {
+  if (k1 < k0) {
+    return;
+  }
+  const int l = f.l;
+  const int b = f.b;
+  const int lo = (l - 1) / 2;
+  // Columns k0 − b .. k1 + b + 1 (b >= l + 1 >= lo + 1: the widest lobe is Dxx's outer box).
+  const int c0 = k0 - b;
+  const int count = k1 + b + 2 - c0;
+  columns.q.resize(static_cast<std::size_t>(count));
+  columns.e.resize(static_cast<std::size_t>(count));
+  columns.f.resize(static_cast<std::size_t>(count));
+  std::int32_t* q = columns.q.data();  // entry j for column c0 + j
+  std::int32_t* e = columns.e.data();
+  std::int32_t* d = columns.f.data();
+  for (int j = 0; j < count; ++j) {
+    q[j] = r.q1[c0 + j] - r.q0[c0 + j];
+  }
+  for (int j = 0; j < count; ++j) {
+    e[j] = (r.yb[c0 + j] - r.ya[c0 + j]) - 3 * (r.yd[c0 + j] - r.yc[c0 + j]);
+  }
+  for (int j = 0; j < count; ++j) {
+    d[j] = (r.p1[c0 + j] - r.p0[c0 + j]) - (r.p3[c0 + j] - r.p2[c0 + j]);
+  }
+  constexpr float kW2 = kDxyWeight * kDxyWeight;
+  for (int x = k0; x <= k1; ++x) {
+    const int j = x - c0;  // column x
+    const auto fxx =
+        static_cast<float>((q[j + b + 1] - q[j - b]) - 3 * (q[j + lo + 1] - q[j - lo]));
+    const auto fyy = static_cast<float>(e[j + l] - e[j - l + 1]);
+    const auto fxy = static_cast<float>(d[j] - d[j - l] - d[j + l + 1] + d[j + 1]);
+    out[x] = (fxx * fyy - kW2 * fxy * fxy) * norm2;
+  }
 }
 
 }  // namespace
@@ -120,13 +165,14 @@ void ResponseLayer::Compute(const IntegralImage& integral, int filter_size, int 
   // value, is cheaper than the scalar strided loop.
   constexpr int kMaxDenseStep = 4;
   std::vector<float> dense(step > 1 && step <= kMaxDenseStep ? integral.width() : 0);
+  ColumnDifferences columns;
   for (int m = m0_; m <= m1_; ++m) {
     const RowPointers rows = Rows(integral, m * step, filter_);
     float* out = det_.get() + static_cast<std::ptrdiff_t>(m) * nx_;
     if (step == 1) {
-      ComputeUnitStepRow(rows, filter_, k0_, k1_, norm2, out);
+      ComputeUnitStepRow(rows, filter_, k0_, k1_, norm2, out, columns);
     } else if (step <= kMaxDenseStep) {
-      ComputeUnitStepRow(rows, filter_, k0_ * step, k1_ * step, norm2, dense.data());
+      ComputeUnitStepRow(rows, filter_, k0_ * step, k1_ * step, norm2, dense.data(), columns);
       for (int k = k0_; k <= k1_; ++k) {
         out[k] = dense[static_cast<std::size_t>(k) * static_cast<std::size_t>(step)];
       }
