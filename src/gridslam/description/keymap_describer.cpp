@@ -107,11 +107,16 @@ KeyMapImages KeyMapDescriber::Images(const KeyMapCells& cells,
   images.distance = cv::Mat(height, width, CV_8U);
   auto* pixels = images.distance.ptr<std::uint8_t>();
   const auto last = static_cast<float>(table_size - 1);
-  for (std::size_t k = 0; k < field.squared.size(); ++k) {
-    const float q = field.squared[k];
+  // The field's and the table's pointers and the count in locals: a byte store may alias anything,
+  // so read through the vectors they were loaded again for every pixel.
+  const float* squared = field.squared.data();
+  const std::size_t count = field.squared.size();
+  const std::uint8_t* pixel_of = table.data();
+  for (std::size_t k = 0; k < count; ++k) {
+    const float q = squared[k];
     // q <= last <= 65536: a whole number the 32-bit conversion takes exactly.
     pixels[k] =
-        q <= last ? table[static_cast<std::uint32_t>(static_cast<std::int32_t>(q))] : beyond;
+        q <= last ? pixel_of[static_cast<std::uint32_t>(static_cast<std::int32_t>(q))] : beyond;
   }
   return images;
 }
