@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <utility>
@@ -192,33 +194,39 @@ std::vector<cv::KeyPoint> DetectFastHessian(const IntegralImage& integral,
     for (int i = 1; i + 1 < n; ++i) {
       const ResponseLayer& above = LayerAt(layers, i + 1);
       const ResponseLayer& layer = LayerAt(layers, i);
+      const int k_begin = above.k0() + 1;
+      const int k_end = above.k1() - 1;
       for (int m = above.m0() + 1; m <= above.m1() - 1; ++m) {
         const float* row = layer.Row(m);
-        for (int k = above.k0() + 1; k <= above.k1() - 1; ++k) {
-          // The row neighbours first: most samples fail there, and IsLocalMaximum requires
-          // both (the earlier one strictly), so the outcome is the same.
-          if (!(row[k] > threshold) || !(row[k] > row[k - 1]) || !(row[k] >= row[k + 1]) ||
-              !IsLocalMaximum(layers, i, m, k)) {
-            continue;
+        for (int chunk = k_begin; chunk <= k_end; chunk += internal::kCandidateChunk) {
+          // The row tests first, for 64 samples at once: most samples fail there, and
+          // IsLocalMaximum requires both (the earlier one strictly), so the outcome is the same.
+          std::uint64_t bits = internal::RowCandidates(
+              row, chunk, std::min(internal::kCandidateChunk, k_end + 1 - chunk), threshold);
+          for (; bits != 0; bits &= bits - 1) {
+            const int k = chunk + std::countr_zero(bits);
+            if (!IsLocalMaximum(layers, i, m, k)) {
+              continue;
+            }
+            const auto refined = Refine(layers, {i, m, k}, options.interpolation_steps);
+            if (!refined.has_value() || !(refined->second.Response() > threshold) ||
+                !found.insert(refined->first).second) {
+              continue;  // unstable, too weak, or another candidate converged to the same sample
+            }
+            const auto [ci, cm, ck] = refined->first;
+            const std::array<double, 3>& offset = refined->second.offset;
+            const BoxHessian at = internal::HessianAt(
+                integral, ck * step, cm * step, layers[static_cast<std::size_t>(ci)].filter());
+            cv::KeyPoint kp;
+            kp.pt = cv::Point2f(static_cast<float>((ck + offset[0]) * step),
+                                static_cast<float>((cm + offset[1]) * step));
+            kp.size = static_cast<float>(FilterSize(o, ci) + offset[2] * filter_step);
+            kp.angle = -1.0F;
+            kp.response = static_cast<float>(refined->second.Response());
+            kp.octave = o;
+            kp.class_id = at.Trace() > 0.0F ? 1 : -1;
+            keypoints.push_back(kp);
           }
-          const auto refined = Refine(layers, {i, m, k}, options.interpolation_steps);
-          if (!refined.has_value() || !(refined->second.Response() > threshold) ||
-              !found.insert(refined->first).second) {
-            continue;  // unstable, too weak, or another candidate converged to the same sample
-          }
-          const auto [ci, cm, ck] = refined->first;
-          const std::array<double, 3>& offset = refined->second.offset;
-          const BoxHessian at = internal::HessianAt(integral, ck * step, cm * step,
-                                                    layers[static_cast<std::size_t>(ci)].filter());
-          cv::KeyPoint kp;
-          kp.pt = cv::Point2f(static_cast<float>((ck + offset[0]) * step),
-                              static_cast<float>((cm + offset[1]) * step));
-          kp.size = static_cast<float>(FilterSize(o, ci) + offset[2] * filter_step);
-          kp.angle = -1.0F;
-          kp.response = static_cast<float>(refined->second.Response());
-          kp.octave = o;
-          kp.class_id = at.Trace() > 0.0F ? 1 : -1;
-          keypoints.push_back(kp);
         }
       }
     }

@@ -1,11 +1,17 @@
 #include "gridslam/features/fast_hessian.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "gridslam/features/synthetic_keymap.hpp"
 
 namespace gridslam::features {
 namespace {
@@ -191,6 +197,30 @@ TEST(FastHessianTest, RefittingFindsAtLeastAsManyKeypoints) {
   const std::size_t single = DetectFastHessian(integral, options).size();
   options.interpolation_steps = 3;
   EXPECT_GE(DetectFastHessian(integral, options).size(), single);
+}
+
+// The keypoints of two synthetic key maps (positions, sizes, responses, octaves, Laplacian signs,
+// FNV-1a of their bits) as the detector before the speed-ups of issue 19 gave them: those must not
+// change the results at all.
+TEST(FastHessianTest, BitForBitAsBeforeTheSpeedUps) {
+  const std::pair<std::uint32_t, std::pair<std::size_t, std::uint64_t>> expected[] = {
+      {3, {55, 0x3689bcf886e8c074ULL}}, {4, {81, 0x3cd6157cb5990092ULL}}};
+  for (const auto& [seed, count_hash] : expected) {
+    const IntegralImage integral(MakeSyntheticKeyMap(240, seed));
+    const std::vector<cv::KeyPoint> keypoints = DetectFastHessian(integral, SurfOptions{});
+    std::uint64_t hash = 1469598103934665603ULL;
+    const auto mix = [&](std::uint32_t bits) { hash = (hash ^ bits) * 1099511628211ULL; };
+    for (const cv::KeyPoint& kp : keypoints) {
+      mix(std::bit_cast<std::uint32_t>(kp.pt.x));
+      mix(std::bit_cast<std::uint32_t>(kp.pt.y));
+      mix(std::bit_cast<std::uint32_t>(kp.size));
+      mix(std::bit_cast<std::uint32_t>(kp.response));
+      mix(static_cast<std::uint32_t>(kp.octave));
+      mix(static_cast<std::uint32_t>(kp.class_id));
+    }
+    EXPECT_EQ(keypoints.size(), count_hash.first) << seed;
+    EXPECT_EQ(hash, count_hash.second) << seed;
+  }
 }
 
 }  // namespace

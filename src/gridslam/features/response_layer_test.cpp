@@ -3,6 +3,7 @@
 #include <bit>
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -86,6 +87,28 @@ TEST(ResponseLayerTest, SubsampleEqualsComputeAtTheDoubleStep) {
       for (int k = direct.k0(); k <= direct.k1(); ++k) {
         ASSERT_EQ(coarse.At(k, m), direct.At(k, m));
       }
+    }
+  }
+}
+
+// RowCandidates sets exactly the bits of the samples passing the row tests, written out one by one:
+// full and partial chunks, plateaus (equal neighbours) and values at the threshold.
+TEST(ResponseLayerTest, RowCandidatesAreTheRowTests) {
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> level(0, 6);  // few levels: many equal neighbours
+  std::vector<float> row(kCandidateChunk + 2);
+  for (int trial = 0; trial < 200; ++trial) {
+    for (float& v : row) {
+      v = 0.25F * static_cast<float>(level(rng));
+    }
+    const int count = trial % 2 == 0 ? kCandidateChunk : trial % kCandidateChunk;
+    const float threshold = 0.25F * static_cast<float>(trial % 5);
+    const std::uint64_t bits = RowCandidates(row.data(), 1, count, threshold);
+    for (int j = 0; j < kCandidateChunk; ++j) {
+      const auto k = static_cast<std::size_t>(1 + j);
+      const bool expected =
+          j < count && row[k] > threshold && row[k] > row[k - 1] && row[k] >= row[k + 1];
+      EXPECT_EQ(((bits >> j) & 1U) != 0, expected) << trial << " " << j;
     }
   }
 }

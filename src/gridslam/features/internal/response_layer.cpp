@@ -1,6 +1,9 @@
 #include "gridslam/features/internal/response_layer.hpp"
 
+#include <array>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "gridslam/common/check.hpp"
@@ -128,6 +131,33 @@ __attribute__((target_clones("avx2", "default"))) void ComputeUnitStepRow(
 }
 
 }  // namespace
+
+std::uint64_t RowCandidates(const float* row, int k, int count, float threshold) {
+  std::array<std::uint8_t, kCandidateChunk> pass{};
+  const float* v = row + k;
+  const auto test = [&](int j) {
+    return static_cast<std::uint8_t>((v[j] > threshold) & (v[j] > v[j - 1]) & (v[j] >= v[j + 1]));
+  };
+  if (count == kCandidateChunk) {  // a fixed trip count: vectorised without a remainder
+    for (int j = 0; j < kCandidateChunk; ++j) {
+      pass[static_cast<std::size_t>(j)] = test(j);
+    }
+  } else {
+    for (int j = 0; j < count; ++j) {
+      pass[static_cast<std::size_t>(j)] = test(j);
+    }
+  }
+  // Eight flags (0 or 1) at a time: one multiply gathers the low bit of every byte of a
+  // little-endian word into its top byte (the partial products land on distinct bits).
+  static_assert(std::endian::native == std::endian::little);
+  std::uint64_t bits = 0;
+  for (int g = 0; g < kCandidateChunk / 8; ++g) {
+    std::uint64_t bytes = 0;
+    std::memcpy(&bytes, pass.data() + static_cast<std::ptrdiff_t>(8 * g), 8);
+    bits |= ((bytes * 0x0102040810204080ULL) >> 56) << (8 * g);
+  }
+  return bits;
+}
 
 FilterGeometry Geometry(int filter_size) {
   GRIDSLAM_CHECK(filter_size % 3 == 0 && (filter_size / 3) % 2 == 1 && filter_size >= 9)

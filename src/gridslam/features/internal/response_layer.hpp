@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 #include "gridslam/features/fast_hessian.hpp"
@@ -28,6 +29,16 @@ struct FilterGeometry {
 /// filter fits.
 [[nodiscard]] BoxHessian HessianAt(const IntegralImage& integral, int x, int y,
                                    const FilterGeometry& filter);
+
+/// Samples a RowCandidates call tests at most.
+inline constexpr int kCandidateChunk = 64;
+
+/// The row tests of the scan for local maxima on `count` samples of a row of responses from index
+/// k: bit j is set where row[k + j] exceeds `threshold` and row[k + j − 1] and is at least
+/// row[k + j + 1] (a 3×3×3 maximum must pass them, ties going to the earlier sample). Vectorised:
+/// most samples fail, and a scan of the set bits has no branch per sample to mispredict.
+/// Contract: 0 <= count <= kCandidateChunk; row[k − 1] .. row[k + count] readable.
+[[nodiscard]] std::uint64_t RowCandidates(const float* row, int k, int count, float threshold);
 
 /// det(H_approx) of one filter size on a grid of nx × ny samples, sample (k, m) at pixel
 /// (k·step, m·step). Values are defined only inside [k0, k1] × [m0, m1], where the filter fits;
