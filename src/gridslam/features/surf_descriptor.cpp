@@ -101,20 +101,19 @@ inline bool HaarFits(const IntegralImage& ii, float x0, float y0, float x1, floa
          BoundaryPixel(x1) + h <= ii.width() && BoundaryPixel(y1) + h <= ii.height();
 }
 
-// Haar wavelets of side 2h centred on the top-left boundary of pixel (px, py); clipped where the
-// boxes leave the image unless kFits (the caller checked that they fit).
-template <bool kFits>
+// Haar wavelets of side 2h centred on the top-left boundary of pixel (px, py), clipped where the
+// boxes leave the image.
 inline Haar HaarAtPixel(const IntegralImage& ii, int px, int py, int h) {
-  if (!kFits && (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height())) {
+  if (px - h < 0 || py - h < 0 || px + h > ii.width() || py + h > ii.height()) {
     return ClippedHaar(ii, px, py, h);
   }
   return InteriorHaar(ii, px, py, h);
 }
 
-// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy).
-template <bool kFits = false>
+// Haar wavelets of side 2h centred on the pixel boundary nearest to (cx, cy), clipped where the
+// boxes leave the image.
 inline Haar HaarAt(const IntegralImage& ii, float cx, float cy, int h) {
-  return HaarAtPixel<kFits>(ii, BoundaryPixel(cx), BoundaryPixel(cy), h);
+  return HaarAtPixel(ii, BoundaryPixel(cx), BoundaryPixel(cy), h);
 }
 
 // Orientation samples: grid points (i, j) [units of s] with i² + j² < 36 and their Gaussian
@@ -130,6 +129,9 @@ struct OrientationPattern {
   std::array<OrientationSample, kMaxOrientationSamples> samples{};
   int count = 0;
   float extent = 0.0F;  // the largest |i| and |j|
+  // The same i and j as arrays, for the loops that vectorise.
+  std::array<float, kMaxOrientationSamples> i{};
+  std::array<float, kMaxOrientationSamples> j{};
 };
 const OrientationPattern& GetOrientationPattern() {
   static const OrientationPattern pattern = [] {
@@ -142,6 +144,8 @@ const OrientationPattern& GetOrientationPattern() {
           p.samples[static_cast<std::size_t>(p.count++)] = {
               static_cast<float>(i), static_cast<float>(j), static_cast<float>(w)};
           p.extent = std::max(p.extent, static_cast<float>(std::abs(i)));
+          p.i[static_cast<std::size_t>(p.count - 1)] = static_cast<float>(i);
+          p.j[static_cast<std::size_t>(p.count - 1)] = static_cast<float>(j);
         }
       }
     }
@@ -203,17 +207,6 @@ struct DescriptorFrame {
   [[nodiscard]] float Y(int j, int m) const {
     return y_u[static_cast<std::size_t>(j)] + v_cos[static_cast<std::size_t>(m)];
   }
-  // True if the wavelets of side 2h fit at every sample. The coordinates are monotonic in k and in
-  // m (each float operation rounds monotonically), so their extremes lie at the grid's corners
-  // (columns 0 and 19 are slots 0 and 19).
-  [[nodiscard]] bool HaarFits(const IntegralImage& ii, int h) const {
-    constexpr int kLast = kGrid - 1;
-    const std::array<float, 4> xs = {X(0, 0), X(kLast, 0), X(0, kLast), X(kLast, kLast)};
-    const std::array<float, 4> ys = {Y(0, 0), Y(kLast, 0), Y(0, kLast), Y(kLast, kLast)};
-    const auto [x0, x1] = std::minmax_element(xs.begin(), xs.end());
-    const auto [y0, y1] = std::minmax_element(ys.begin(), ys.end());
-    return features::HaarFits(ii, *x0, *y0, *x1, *y1, h);
-  }
 };
 
 DescriptorFrame MakeDescriptorFrame(float x, float y, float scale, float angle) {
@@ -232,21 +225,23 @@ DescriptorFrame MakeDescriptorFrame(float x, float y, float scale, float angle) 
   return f;
 }
 
-// InteriorHaar at the 20 pixels (px[j], py[j]) of a descriptor row, where the boxes fit: the table
-// offsets of the top-left corners first (a loop that vectorises), then the eight look-ups each at
-// fixed distances from there. The same integer sums, so the same values.
-void InteriorHaarRow(const IntegralImage& ii, const int* px, const int* py, int h, float* dx,
-                     float* dy) {
+// InteriorHaar at the pixels (px[j], py[j]), j < count <= kMaxCount, where the boxes fit: the
+// table offsets of the top-left corners first (a loop that vectorises), then the eight look-ups
+// each at fixed distances from there. The same integer sums, so the same values.
+template <int kMaxCount>
+void InteriorHaars(const IntegralImage& ii, const int* px, const int* py, int count, int h,
+                   float* dx, float* dy) {
   const int stride = ii.stride();
-  std::array<int, kGrid> top;  // offset of (px − h, py − h); written before it is read
-  for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
-    top[j] = (py[j] - h) * stride + px[j] - h;
+  std::array<int, kMaxCount> top;  // offset of (px − h, py − h); written before it is read
+  for (int j = 0; j < count; ++j) {
+    top[static_cast<std::size_t>(j)] = (py[j] - h) * stride + px[j] - h;
   }
   const std::int32_t* table = ii.Row(0);
   const std::ptrdiff_t mid = static_cast<std::ptrdiff_t>(h) * stride;  // rows py, py + h
   const std::ptrdiff_t bot = 2 * mid;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
-    const std::int32_t* t = table + top[j];  // columns px − h, px, px + h at +0, +h, +2h
+  for (int j = 0; j < count; ++j) {
+    const std::int32_t* t =
+        table + top[static_cast<std::size_t>(j)];  // px − h, px, px + h: +0, +h, +2h
     const std::int32_t ta = t[0];
     const std::int32_t tp = t[h];
     const std::int32_t tc = t[2 * h];
@@ -262,8 +257,9 @@ void InteriorHaarRow(const IntegralImage& ii, const int* px, const int* py, int 
 
 // The rotated, weighted responses of the 20 samples of grid row m, by slot: rx along the
 // orientation, ry perpendicular to it. The pixel coordinates first (a loop that vectorises), then
-// the wavelets, then the rotation (vectorises too).
-template <bool kFits>
+// the wavelets, then the rotation (vectorises too). The coordinates are monotonic along the row, so
+// if the wavelets fit at its first and last samples (slots 0 and 19) they fit at all of them and
+// none needs the clipping test.
 void RowResponses(const IntegralImage& integral, const DescriptorFrame& f, int m, int h,
                   const float* weight, float* rx, float* ry) {
   std::array<int, kGrid> px;  // every array here is written before it is read
@@ -272,13 +268,16 @@ void RowResponses(const IntegralImage& integral, const DescriptorFrame& f, int m
     px[static_cast<std::size_t>(j)] = BoundaryPixel(f.X(j, m));
     py[static_cast<std::size_t>(j)] = BoundaryPixel(f.Y(j, m));
   }
+  constexpr std::size_t kLast = kGrid - 1;
+  const auto [x0, x1] = std::minmax(px[0], px[kLast]);
+  const auto [y0, y1] = std::minmax(py[0], py[kLast]);
   std::array<float, kGrid> dx;
   std::array<float, kGrid> dy;
-  if constexpr (kFits) {
-    InteriorHaarRow(integral, px.data(), py.data(), h, dx.data(), dy.data());
+  if (x0 - h >= 0 && y0 - h >= 0 && x1 + h <= integral.width() && y1 + h <= integral.height()) {
+    InteriorHaars<kGrid>(integral, px.data(), py.data(), kGrid, h, dx.data(), dy.data());
   } else {
     for (std::size_t j = 0; j < static_cast<std::size_t>(kGrid); ++j) {
-      const Haar r = HaarAtPixel<false>(integral, px[j], py[j], h);
+      const Haar r = HaarAtPixel(integral, px[j], py[j], h);
       dx[j] = r.dx;
       dy[j] = r.dy;
     }
@@ -294,7 +293,6 @@ void RowResponses(const IntegralImage& integral, const DescriptorFrame& f, int m
 // The standard descriptor's sums: (Σrx, Σry, Σ|rx|, Σ|ry|) of each sub-region, its terms in the
 // order of its samples by row, then column, as one loop over (m, k) added them. The four
 // sub-regions of a band of five rows are summed in locals, lane q for sub-region column q.
-template <bool kFits>
 void StandardSums(const IntegralImage& integral, const DescriptorFrame& f, int h, float* out) {
   const GridWeights& weights = DescriptorWeights();
   using Lanes = std::array<float, kRegionsPerRow>;
@@ -305,8 +303,8 @@ void StandardSums(const IntegralImage& integral, const DescriptorFrame& f, int h
   for (int m = 0; m < kGrid; ++m) {
     std::array<float, kGrid> rx;  // written by RowResponses
     std::array<float, kGrid> ry;
-    RowResponses<kFits>(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
-                        rx.data(), ry.data());
+    RowResponses(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
+                 rx.data(), ry.data());
     for (std::size_t kk = 0; kk < static_cast<std::size_t>(kRegionSide); ++kk) {
       for (std::size_t q = 0; q < static_cast<std::size_t>(kRegionsPerRow); ++q) {
         const std::size_t j = kk * kRegionsPerRow + q;
@@ -334,14 +332,13 @@ void StandardSums(const IntegralImage& integral, const DescriptorFrame& f, int h
 
 // The extended descriptor's sums, split by the sign of the other response, added in the same
 // order of the samples into `out` (zeroed by the caller).
-template <bool kFits>
 void ExtendedSums(const IntegralImage& integral, const DescriptorFrame& f, int h, float* out) {
   const GridWeights& weights = DescriptorWeights();
   for (int m = 0; m < kGrid; ++m) {
     std::array<float, kGrid> rx;  // written by RowResponses
     std::array<float, kGrid> ry;
-    RowResponses<kFits>(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
-                        rx.data(), ry.data());
+    RowResponses(integral, f, m, h, weights.data() + static_cast<std::ptrdiff_t>(m) * kGrid,
+                 rx.data(), ry.data());
     for (int j = 0; j < kGrid; ++j) {
       const float x = rx[static_cast<std::size_t>(j)];
       const float y = ry[static_cast<std::size_t>(j)];
@@ -369,20 +366,39 @@ struct OrientationPoints {
 
 // Appends the wavelet response of side 2h at each of the pattern's samples around (x, y) that is
 // not (0, 0) to `points` (dx, dy) and its weight to `weight`, in pattern order. Each is written
-// always and kept (n advanced) only if not (0, 0): no branch to mispredict.
+// always and kept (n advanced) only if not (0, 0): no branch to mispredict. kFits: the caller
+// checked that the wavelets fit at every sample; then the pixels and the look-ups are loops over
+// all samples (InteriorHaars).
 template <bool kFits>
 int CollectResponses(const IntegralImage& integral, float x, float y, float scale, int h,
                      OrientationPoints& points, float* weight) {
   const OrientationPattern& pattern = GetOrientationPattern();
+  const int count = pattern.count;
+  std::array<float, kMaxOrientationSamples> dx;  // written before they are read
+  std::array<float, kMaxOrientationSamples> dy;
+  if constexpr (kFits) {
+    std::array<int, kMaxOrientationSamples> px;
+    std::array<int, kMaxOrientationSamples> py;
+    for (std::size_t s = 0; s < static_cast<std::size_t>(count); ++s) {
+      px[s] = BoundaryPixel(x + pattern.i[s] * scale);
+      py[s] = BoundaryPixel(y + pattern.j[s] * scale);
+    }
+    InteriorHaars<kMaxOrientationSamples>(integral, px.data(), py.data(), count, h, dx.data(),
+                                          dy.data());
+  } else {
+    for (std::size_t s = 0; s < static_cast<std::size_t>(count); ++s) {
+      const Haar r = HaarAt(integral, x + pattern.i[s] * scale, y + pattern.j[s] * scale, h);
+      dx[s] = r.dx;
+      dy[s] = r.dy;
+    }
+  }
   int n = 0;
-  for (int s = 0; s < pattern.count; ++s) {
-    const OrientationSample& p = pattern.samples[static_cast<std::size_t>(s)];
-    const Haar r = HaarAt<kFits>(integral, x + p.i * scale, y + p.j * scale, h);
+  for (std::size_t s = 0; s < static_cast<std::size_t>(count); ++s) {
     const auto k = static_cast<std::size_t>(n);
-    points.dx[k] = r.dx;
-    points.dy[k] = r.dy;
-    weight[k] = p.weight;
-    n += r.dx != 0.0F || r.dy != 0.0F ? 1 : 0;
+    points.dx[k] = dx[s];
+    points.dy[k] = dy[s];
+    weight[k] = pattern.samples[s].weight;
+    n += dx[s] != 0.0F || dy[s] != 0.0F ? 1 : 0;
   }
   return n;
 }
@@ -500,15 +516,12 @@ void ComputeSurfDescriptor(const IntegralImage& integral, float x, float y, floa
   GRIDSLAM_CHECK(scale > 0.0F) << "scale " << scale;
   const int h = std::max(1, static_cast<int>(std::lround(scale)));  // side 2s
   const DescriptorFrame frame = MakeDescriptorFrame(x, y, scale, angle);
-  const bool fits = frame.HaarFits(integral, h);
   const int size = extended ? kSurfExtendedDescriptorSize : kSurfDescriptorSize;
   std::fill(out, out + size, 0.0F);
   if (extended) {
-    fits ? ExtendedSums<true>(integral, frame, h, out)
-         : ExtendedSums<false>(integral, frame, h, out);
+    ExtendedSums(integral, frame, h, out);
   } else {
-    fits ? StandardSums<true>(integral, frame, h, out)
-         : StandardSums<false>(integral, frame, h, out);
+    StandardSums(integral, frame, h, out);
   }
   double norm2 = 0.0;
   for (int i = 0; i < size; ++i) {
