@@ -12,11 +12,15 @@ void IntegralImage::Compute(const cv::Mat& image) {
       << "image too large for a 32-bit integral image";
   width_ = image.cols;
   height_ = image.rows;
-  table_.assign(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1), 0);
+  // Every entry is written below (the zero first row, then each row's zero first entry and its
+  // sums), so the storage is only resized: zeroing all of it first was a second pass.
+  table_.resize(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1));
+  std::fill(table_.begin(), table_.begin() + stride(), 0);
   for (int y = 0; y < height_; ++y) {
     const auto* src = image.ptr<std::uint8_t>(y);
     const std::int32_t* above = Row(y);
     std::int32_t* out = table_.data() + static_cast<std::ptrdiff_t>(y + 1) * stride();
+    out[0] = 0;
     std::int32_t row_sum = 0;
     for (int x = 0; x < width_; ++x) {
       row_sum += src[x];

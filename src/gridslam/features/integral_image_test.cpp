@@ -1,6 +1,7 @@
 #include "gridslam/features/integral_image.hpp"
 
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -88,6 +89,22 @@ TEST(IntegralImageTest, ComputeReusesAndEmptyImage) {
   EXPECT_EQ(integral.BoxSum(0, 0, 4, 5), 40);
   integral.Compute(cv::Mat(0, 0, CV_8UC1));
   EXPECT_TRUE(integral.empty());
+}
+
+// Compute() on a table holding another image's sums (larger, smaller, another shape) writes every
+// entry: the zero first row and column too.
+TEST(IntegralImageTest, RecomputedTableMatchesBruteForce) {
+  std::mt19937 rng(7);
+  IntegralImage integral(cv::Mat(40, 50, CV_8UC1, cv::Scalar(255)));
+  for (const auto& [width, height] : {std::pair{17, 29}, std::pair{50, 3}, std::pair{61, 44}}) {
+    const cv::Mat image = RandomImage(width, height, rng);
+    integral.Compute(image);
+    for (int y = 0; y <= height; ++y) {
+      for (int x = 0; x <= width; ++x) {
+        ASSERT_EQ(integral.At(x, y), BruteForceSum(image, 0, 0, x, y)) << x << ", " << y;
+      }
+    }
+  }
 }
 
 }  // namespace
