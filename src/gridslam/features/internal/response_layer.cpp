@@ -132,7 +132,10 @@ __attribute__((target_clones("avx2", "default"))) void ComputeUnitStepRow(
 
 }  // namespace
 
-std::uint64_t RowCandidates(const float* row, int k, int count, float threshold) {
+// Compiled also for AVX2 (eight samples per compare), picked at load time like ComputeUnitStepRow.
+__attribute__((target_clones("avx2", "default"))) std::uint64_t RowCandidates(const float* row,
+                                                                              int k, int count,
+                                                                              float threshold) {
   std::array<std::uint8_t, kCandidateChunk> pass{};
   const float* v = row + k;
   const auto test = [&](int j) {
