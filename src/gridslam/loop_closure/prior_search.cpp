@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
+#include "gridslam/common/check.hpp"
 #include "gridslam/common/thread_scratch.hpp"
 
 namespace gridslam::loop_closure {
@@ -26,6 +28,24 @@ Status PriorSearchOptions::Validate() const {
   return Require(max_ambiguity > 0.0 && max_ambiguity <= 1.0,
                  "0 < prior_search.max_ambiguity <= 1");
 }
+
+namespace internal {
+
+void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj, int reach,
+                int width, int height, std::span<int> cells) {
+  const int zero = width * height;
+  const std::size_t n = ci.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = ci[k] + di;
+    const int j = cj[k] + dj;
+    // `&`, not `&&`: no branch, so that the loop vectorizes.
+    const bool hits = (i < width) & (j < height) & (i + reach > 0) & (j + reach > 0);
+    const int cell = std::clamp(j, 0, height - 1) * width + std::clamp(i, 0, width - 1);
+    cells[k] = hits ? cell : zero;
+  }
+}
+
+}  // namespace internal
 
 namespace {
 
@@ -106,6 +126,7 @@ class BranchAndBound {
     std::vector<std::vector<float>> pools;
     std::vector<int> cell_i;
     std::vector<int> cell_j;
+    std::vector<int> cells;  ///< The cells a batch of bounds reads (internal::BlockCells).
   };
 
   BranchAndBound(const Grid2D<float>& distance_a, const Pose2& prior, const SearchLattice& lattice,
@@ -116,18 +137,23 @@ class BranchAndBound {
         buffers_(ThreadScratch<Buffers, Buffers>()) {
     const MapLimits& limits = distance_a.Limits();
     const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    // Bounds index the grid, and its zero cell past the end, with ints.
+    GRIDSLAM_CHECK(cells < static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        << "prior search: a grid of " << cells << " cells";
     const float* field = distance_a.data();
     const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
-    buffers_.score.resize(cells);
+    buffers_.score.resize(cells + 1);
     for (std::size_t c = 0; c < cells; ++c) {
       buffers_.score[c] =
           field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
     }
+    buffers_.score[cells] = 0.0F;
     levels_ = PoolLevels(lattice.side);
     BuildPools();
     const std::size_t n = lattice.points.size();
     buffers_.cell_i.resize(static_cast<std::size_t>(lattice.angles) * n);
     buffers_.cell_j.resize(buffers_.cell_i.size());
+    buffers_.cells.resize(static_cast<std::size_t>(kBatch) * n);
     for (int a = 0; a < lattice.angles; ++a) {
       const double dtheta = (a - lattice.angles / 2) * options.angular_step;
       const PointTransform T(prior * Pose2(0.0, 0.0, dtheta));
@@ -160,8 +186,9 @@ class BranchAndBound {
     for (int a = 0; a < lattice_.angles; ++a) {
       roots.push_back(Node{a, levels_, 0, 0, 0.0F});
     }
-    for (Node& root : roots) {
-      root.bound = Bound(root, scored);
+    for (std::size_t first = 0; first < roots.size(); first += kBatch) {
+      Bounds(roots.data() + first,
+             static_cast<int>(std::min<std::size_t>(kBatch, roots.size() - first)), scored);
     }
     Descend(roots.data(), roots.data() + roots.size(), &best, scored);
     return best;
@@ -215,7 +242,8 @@ class BranchAndBound {
     for (int level = 1; level <= levels_; ++level) {
       const int shift = (1 << (level - 1)) * lattice_.step;
       std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(level - 1)];
-      pool.resize(buffers_.score.size());
+      pool.resize(buffers_.score.size());  // with the zero cell
+      pool.back() = 0.0F;
       for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
           float m = (*previous)[at(i, j)];
@@ -235,42 +263,53 @@ class BranchAndBound {
     }
   }
 
-  // Exact score of a leaf (level 0), or the bound of a block.
-  float Bound(const Node& node, long* scored) const {
-    ++*scored;
+  // Exact scores of leaves (level 0), or bounds of blocks, for up to kBatch nodes of one level.
+  // A leaf sums the scores of the cells its points land on (reach 1: a point off the grid adds
+  // nothing); a block sums, per point, the pool of the cells [i, i + 2^level step) it moves the
+  // point over, read at the first cell clipped to the grid (the pool there covers the rest of
+  // the span), nothing when the span misses the grid. Missed cells read the zero cell past the
+  // grid's end: adding +0 to a sum of scores >= 0 leaves it unchanged. Each node's sum runs over
+  // the points in their order, the same number as summed alone; the nodes' sums are independent
+  // chains of additions, which the processor overlaps (one sum at a time waits for each
+  // addition's latency).
+  static constexpr int kBatch = 4;
+  void Bounds(Node* nodes, int count, long* scored) const {
+    *scored += count;
     const std::size_t n = lattice_.points.size();
-    const int* ci = buffers_.cell_i.data() + static_cast<std::size_t>(node.a) * n;
-    const int* cj = buffers_.cell_j.data() + static_cast<std::size_t>(node.a) * n;
-    const int di = node.u0 * lattice_.step;
-    const int dj = node.v0 * lattice_.step;
-    const int w = width_;
-    const int h = height_;
-    float sum = 0.0F;
-    if (node.level == 0) {
-      for (std::size_t k = 0; k < n; ++k) {
-        const int i = ci[k] + di;
-        const int j = cj[k] + dj;
-        if (i >= 0 && j >= 0 && i < w && j < h) {
-          sum += buffers_.score[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-                                static_cast<std::size_t>(i)];
-        }
-      }
-      return sum;
-    }
-    // The block moves a point over cells [i, i + 2^level step); a start left of (below) the
-    // grid is clipped to its first cell, whose pool covers the rest of the span.
-    const int span = (1 << node.level) * lattice_.step;
-    const std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(node.level - 1)];
-    for (std::size_t k = 0; k < n; ++k) {
-      const int i = ci[k] + di;
-      const int j = cj[k] + dj;
-      if (i >= w || j >= h || i + span <= 0 || j + span <= 0) {
+    const int level = nodes[0].level;
+    const bool leaf = level == 0;
+    const int reach = leaf ? 1 : (1 << level) * lattice_.step;
+    const float* values =
+        leaf ? buffers_.score.data() : buffers_.pools[static_cast<std::size_t>(level - 1)].data();
+    std::array<const int*, kBatch> cells{};
+    for (int m = 0; m < kBatch; ++m) {
+      if (m >= count) {
+        cells[static_cast<std::size_t>(m)] = cells[0];  // an unused sum: repeats the first
         continue;
       }
-      sum += pool[static_cast<std::size_t>(std::max(j, 0)) * static_cast<std::size_t>(w) +
-                  static_cast<std::size_t>(std::max(i, 0))];
+      const Node& node = nodes[m];
+      const std::size_t rotation = static_cast<std::size_t>(node.a) * n;
+      int* out = buffers_.cells.data() + static_cast<std::size_t>(m) * n;
+      internal::BlockCells(std::span<const int>(buffers_.cell_i.data() + rotation, n),
+                           std::span<const int>(buffers_.cell_j.data() + rotation, n),
+                           node.u0 * lattice_.step, node.v0 * lattice_.step, reach, width_, height_,
+                           std::span<int>(out, n));
+      cells[static_cast<std::size_t>(m)] = out;
     }
-    return sum;
+    float sum0 = 0.0F;
+    float sum1 = 0.0F;
+    float sum2 = 0.0F;
+    float sum3 = 0.0F;
+    for (std::size_t k = 0; k < n; ++k) {
+      sum0 += values[cells[0][k]];
+      sum1 += values[cells[1][k]];
+      sum2 += values[cells[2][k]];
+      sum3 += values[cells[3][k]];
+    }
+    const std::array<float, kBatch> sums{sum0, sum1, sum2, sum3};
+    for (int m = 0; m < count; ++m) {
+      nodes[m].bound = sums[static_cast<std::size_t>(m)];
+    }
   }
 
   // Whether every translation of the block lies within the exclusion (a disc and a strip are
@@ -303,9 +342,11 @@ class BranchAndBound {
           if (child.u0 >= lattice_.side || child.v0 >= lattice_.side || Excluded(child)) {
             continue;
           }
-          child.bound = Bound(child, scored);
           children[static_cast<std::size_t>(count++)] = child;
         }
+      }
+      if (count > 0) {
+        Bounds(children.data(), count, scored);
       }
       Descend(children.data(), children.data() + count, best, scored);
     }

@@ -131,4 +131,17 @@ PriorSearchResult SearchAroundPriorExhaustive(std::span<const Eigen::Vector2d> p
                                               double window_xy, double window_theta,
                                               const PriorSearchOptions& options);
 
+namespace internal {
+
+/// The cells a bound of SearchAroundPrior's branch and bound reads in a `width` x `height` grid
+/// (row-major, followed by one more cell, index width * height, holding 0): for point k, the
+/// block whose first cell is (ci[k] + di, cj[k] + dj) and which reaches `reach` cells along x and
+/// y reads its first cell clipped to the grid, or the zero cell when it misses the grid. Written
+/// to `cells` (ci.size() of them) in one branch-free pass that the compiler vectorizes, so that
+/// summing the points is a plain gather in their order. width * height must fit an int.
+void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj, int reach,
+                int width, int height, std::span<int> cells);
+
+}  // namespace internal
+
 }  // namespace gridslam::loop_closure

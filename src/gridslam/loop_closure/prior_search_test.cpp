@@ -227,5 +227,47 @@ TEST(PriorSearch, TheWideWindowCoversTheArbitersDriftUpToTheCap) {
   EXPECT_FALSE(none.Validate().ok());
 }
 
+// The cells a bound reads: a point's block cell clipped to the grid when the block's span
+// reaches the grid, else the zero cell past the grid's end (width * height).
+TEST(PriorSearch, BlockCellsClipsToTheGridOrReadsTheZeroCell) {
+  constexpr int kWidth = 10;
+  constexpr int kHeight = 7;
+  constexpr int kZero = kWidth * kHeight;
+  const std::vector<int> ci{3, -2, -4, 12, 9, 10, 0, -1};
+  const std::vector<int> cj{2, 1, 1, 0, 6, 0, -2, -1};
+  std::vector<int> cells(ci.size());
+  // A block reaching 3 cells, moved by (1, 0): starts at x = 4, -1, -3, 13, 10, 11, 1, 0.
+  internal::BlockCells(ci, cj, 1, 0, 3, kWidth, kHeight, cells);
+  EXPECT_EQ(cells, (std::vector<int>{2 * kWidth + 4, 1 * kWidth + 0, kZero, kZero, kZero, kZero,
+                                     0 * kWidth + 1, 0 * kWidth + 0}));
+  // A leaf reaches one cell: a point left of or below the grid reads the zero cell.
+  internal::BlockCells(ci, cj, 0, 0, 1, kWidth, kHeight, cells);
+  EXPECT_EQ(cells, (std::vector<int>{2 * kWidth + 3, kZero, kZero, kZero, 6 * kWidth + 9, kZero,
+                                     kZero, kZero}));
+
+  // Against the branches it replaces, on random points around the grid.
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> coordinate(-40, 40);
+  std::vector<int> xs(301);
+  std::vector<int> ys(xs.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    xs[k] = coordinate(random);
+    ys[k] = coordinate(random);
+  }
+  cells.resize(xs.size());
+  for (const int reach : {1, 4, 16, 64}) {
+    for (const int shift : {-20, 0, 9}) {
+      internal::BlockCells(xs, ys, shift, 2 * shift, reach, kWidth, kHeight, cells);
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        const int i = xs[k] + shift;
+        const int j = ys[k] + 2 * shift;
+        const bool hits = i < kWidth && j < kHeight && i + reach > 0 && j + reach > 0;
+        EXPECT_EQ(cells[k], hits ? std::max(j, 0) * kWidth + std::max(i, 0) : kZero)
+            << reach << " " << shift << " " << k;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gridslam::loop_closure
