@@ -45,6 +45,14 @@ void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj
   }
 }
 
+void MaxInto(std::span<float> out, std::span<const float> in) {
+  const std::size_t n = out.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // As std::max(out, in), without the reference that keeps the loop from vectorizing.
+    out[i] = out[i] < in[i] ? in[i] : out[i];
+  }
+}
+
 }  // namespace internal
 
 namespace {
@@ -143,9 +151,12 @@ class BranchAndBound {
     const float* field = distance_a.data();
     const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
     buffers_.score.resize(cells + 1);
+    float* score = buffers_.score.data();
     for (std::size_t c = 0; c < cells; ++c) {
-      buffers_.score[c] =
-          field[c] >= 0.0F ? std::max(0.0F, 1.0F - field[c] * inv_truncation) : 0.0F;
+      // max(0, 1 - d / truncation) on known cells, 0 on unknown ones, as one select (no branch:
+      // the loop vectorizes).
+      const float s = 1.0F - field[c] * inv_truncation;
+      score[c] = (field[c] >= 0.0F) & (s > 0.0F) ? s : 0.0F;
     }
     buffers_.score[cells] = 0.0F;
     levels_ = PoolLevels(lattice.side);
@@ -204,60 +215,60 @@ class BranchAndBound {
   };
 
   // buffers_.pools[L - 1](i, j) = the largest score over cells [i, i + 2^L step) x [j, j + 2^L
-  // step).
+  // step) (clipped to the grid). Every pool is a largest value over a set of cells, built from
+  // rows and columns apart in passes of internal::MaxInto: the largest of a set of scores (all
+  // >= +0, none NaN) is the same number whatever the order it is taken in.
   void BuildPools() {
     const int w = width_;
     const int h = height_;
-    const auto at = [w](int i, int j) {
-      return static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-             static_cast<std::size_t>(i);
+    const auto row = [w](std::vector<float>& grid, int j) {
+      return std::span<float>(
+          grid.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w),
+          static_cast<std::size_t>(w));
     };
+    const auto cells = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     // Base: the square of one step.
     std::vector<float>& rows = buffers_.rows;
     std::vector<float>& base = buffers_.base;
-    rows.resize(buffers_.score.size());
-    base.resize(buffers_.score.size());
+    rows.resize(cells);
+    base.resize(cells);
+    std::copy_n(buffers_.score.begin(), cells, rows.begin());
     for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i) {
-        float m = 0.0F;
-        for (int d = 0; d < lattice_.step && i + d < w; ++d) {
-          m = std::max(m, buffers_.score[at(i + d, j)]);
-        }
-        rows[at(i, j)] = m;
+      const std::span<float> out = row(rows, j);
+      const std::span<float> in = row(buffers_.score, j);
+      for (int d = 1; d < lattice_.step && d < w; ++d) {
+        internal::MaxInto(out.first(static_cast<std::size_t>(w - d)),
+                          in.subspan(static_cast<std::size_t>(d)));
       }
     }
+    std::copy(rows.begin(), rows.end(), base.begin());
     for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i) {
-        float m = 0.0F;
-        for (int d = 0; d < lattice_.step && j + d < h; ++d) {
-          m = std::max(m, rows[at(i, j + d)]);
-        }
-        base[at(i, j)] = m;
+      for (int d = 1; d < lattice_.step && j + d < h; ++d) {
+        internal::MaxInto(row(base, j), row(rows, j + d));
       }
     }
     if (buffers_.pools.size() < static_cast<std::size_t>(levels_)) {
       buffers_.pools.resize(static_cast<std::size_t>(levels_));
     }
-    const std::vector<float>* previous = &base;
+    // Level L from level L - 1: the larger of (i, j) and (i + shift, j) where that lies on the
+    // grid (into `rows`), then the larger of that at (i, j) and (i, j + shift).
+    std::vector<float>* previous = &base;
     for (int level = 1; level <= levels_; ++level) {
       const int shift = (1 << (level - 1)) * lattice_.step;
-      std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(level - 1)];
-      pool.resize(buffers_.score.size());  // with the zero cell
-      pool.back() = 0.0F;
-      for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) {
-          float m = (*previous)[at(i, j)];
-          if (i + shift < w) {
-            m = std::max(m, (*previous)[at(i + shift, j)]);
-          }
-          if (j + shift < h) {
-            m = std::max(m, (*previous)[at(i, j + shift)]);
-            if (i + shift < w) {
-              m = std::max(m, (*previous)[at(i + shift, j + shift)]);
-            }
-          }
-          pool[at(i, j)] = m;
+      std::copy(previous->begin(), previous->begin() + static_cast<std::ptrdiff_t>(cells),
+                rows.begin());
+      if (shift < w) {
+        for (int j = 0; j < h; ++j) {
+          internal::MaxInto(row(rows, j).first(static_cast<std::size_t>(w - shift)),
+                            row(*previous, j).subspan(static_cast<std::size_t>(shift)));
         }
+      }
+      std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(level - 1)];
+      pool.resize(cells + 1);  // with the zero cell
+      std::copy(rows.begin(), rows.end(), pool.begin());
+      pool.back() = 0.0F;
+      for (int j = 0; j + shift < h; ++j) {
+        internal::MaxInto(row(pool, j), row(rows, j + shift));
       }
       previous = &pool;
     }

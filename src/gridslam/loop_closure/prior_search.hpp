@@ -142,6 +142,10 @@ namespace internal {
 void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj, int reach,
                 int width, int height, std::span<int> cells);
 
+/// out[i] = the larger of out[i] and in[i] (as std::max(out[i], in[i])), for i < out.size();
+/// `in` holds at least as many values. The passes that build the prior search's max pools.
+void MaxInto(std::span<float> out, std::span<const float> in);
+
 }  // namespace internal
 
 }  // namespace gridslam::loop_closure

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -267,6 +268,15 @@ TEST(PriorSearch, BlockCellsClipsToTheGridOrReadsTheZeroCell) {
       }
     }
   }
+}
+
+TEST(PriorSearch, MaxIntoKeepsTheLargerOfEachPair) {
+  std::vector<float> out{0.0F, 0.5F, 1.0F, 0.25F, 0.75F};
+  const std::vector<float> in{0.1F, 0.5F, 0.0F, 0.3F, 0.7F, 9.0F};
+  internal::MaxInto(out, in);  // in's last value is past out's end: not read
+  EXPECT_EQ(out, (std::vector<float>{0.1F, 0.5F, 1.0F, 0.3F, 0.75F}));
+  internal::MaxInto(std::span<float>(out).first(2), std::span<const float>(in).subspan(4));
+  EXPECT_EQ(out, (std::vector<float>{0.7F, 9.0F, 1.0F, 0.3F, 0.75F}));
 }
 
 }  // namespace
