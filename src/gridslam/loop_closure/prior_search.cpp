@@ -53,6 +53,26 @@ void MaxInto(std::span<float> out, std::span<const float> in) {
   }
 }
 
+void TruncatedScores(std::span<const float> distance, float inv_truncation,
+                     std::span<float> score) {
+  const std::size_t n = distance.size();
+  for (std::size_t c = 0; c < n; ++c) {
+    // max(0, 1 - d / truncation) on known cells, 0 on unknown ones, as one select (no branch:
+    // the loop vectorizes).
+    const float s = 1.0F - distance[c] * inv_truncation;
+    score[c] = (distance[c] >= 0.0F) & (s > 0.0F) ? s : 0.0F;
+  }
+}
+
+int FirstStepAtLeast(int start, int step, int bound) {
+  if (start >= bound) {
+    return 0;
+  }
+  // In 64 bits: `start` may be far below the grid (a point far off it).
+  const long long steps = (static_cast<long long>(bound) - start + step - 1) / step;
+  return static_cast<int>(std::min<long long>(steps, std::numeric_limits<int>::max()));
+}
+
 }  // namespace internal
 
 namespace {
@@ -151,13 +171,8 @@ class BranchAndBound {
     const float* field = distance_a.data();
     const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
     buffers_.score.resize(cells + 1);
-    float* score = buffers_.score.data();
-    for (std::size_t c = 0; c < cells; ++c) {
-      // max(0, 1 - d / truncation) on known cells, 0 on unknown ones, as one select (no branch:
-      // the loop vectorizes).
-      const float s = 1.0F - field[c] * inv_truncation;
-      score[c] = (field[c] >= 0.0F) & (s > 0.0F) ? s : 0.0F;
-    }
+    internal::TruncatedScores(std::span<const float>(field, cells), inv_truncation,
+                              std::span<float>(buffers_.score.data(), cells));
     buffers_.score[cells] = 0.0F;
     levels_ = PoolLevels(lattice.side);
     BuildPools();
@@ -411,8 +426,15 @@ PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<f
   const std::vector<Eigen::Vector2d>& points = lattice.points;
   const int w = limits.Width();
   const int h = limits.Height();
-  const float* field = distance_a.data();
-  const auto inv_truncation = static_cast<float>(1.0 / options.truncation);
+  // Each cell's score once (the same numbers as the points' own: points on unknown cells add
+  // +0, which leaves a sum of scores >= 0 unchanged), kept per thread from search to search.
+  struct Scratch {
+    std::vector<float> score;
+  };
+  std::vector<float>& score = ThreadScratch<Scratch, Scratch>().score;
+  score.resize(distance_a.size());
+  internal::TruncatedScores(distance_a.Cells(), static_cast<float>(1.0 / options.truncation),
+                            score);
   std::vector<float> scores(static_cast<std::size_t>(angles) * side * side, 0.0F);
   std::vector<int> ci(points.size());
   std::vector<int> cj(points.size());
@@ -426,22 +448,20 @@ PriorSearchResult ScoreWholeLattice(const SearchLattice& lattice, const Grid2D<f
     }
     float* slice = scores.data() + static_cast<std::size_t>(a) * side * side;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      for (int v = 0; v < side; ++v) {
-        const int j = cj[k] + (v - half) * step;
-        if (j < 0 || j >= h) {
-          continue;
-        }
-        const float* row = field + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
+      // Translation (u, v) moves point k to cell (first_i + u step, first_j + v step); the
+      // translations that keep it on the grid, computed once instead of tested per pose.
+      const int first_i = ci[k] - half * step;
+      const int first_j = cj[k] - half * step;
+      const int u_begin = std::min(side, internal::FirstStepAtLeast(first_i, step, 0));
+      const int u_end = std::min(side, internal::FirstStepAtLeast(first_i, step, w));
+      const int v_begin = std::min(side, internal::FirstStepAtLeast(first_j, step, 0));
+      const int v_end = std::min(side, internal::FirstStepAtLeast(first_j, step, h));
+      for (int v = v_begin; v < v_end; ++v) {
+        const int j = first_j + v * step;
+        const float* row = score.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
         float* out = slice + static_cast<std::size_t>(v) * side;
-        for (int u = 0; u < side; ++u) {
-          const int i = ci[k] + (u - half) * step;
-          if (i < 0 || i >= w) {
-            continue;
-          }
-          const float d = row[i];
-          if (d >= 0.0F) {
-            out[u] += std::max(0.0F, 1.0F - d * inv_truncation);
-          }
+        for (int u = u_begin; u < u_end; ++u) {
+          out[u] += row[first_i + u * step];
         }
       }
     }

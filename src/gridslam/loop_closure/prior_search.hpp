@@ -146,6 +146,15 @@ void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj
 /// `in` holds at least as many values. The passes that build the prior search's max pools.
 void MaxInto(std::span<float> out, std::span<const float> in);
 
+/// score[c] = max(0, 1 - distance[c] / truncation) as the prior search scores a point on cell c
+/// (in floats: 1 - d * inv_truncation), 0 on unknown cells (negative distances), for every
+/// cell of `distance`; `score` holds at least as many.
+void TruncatedScores(std::span<const float> distance, float inv_truncation, std::span<float> score);
+
+/// The smallest u >= 0 with start + u * step >= bound (step > 0; at most INT_MAX): the first of
+/// a row of lattice steps from `start` that reaches `bound`.
+int FirstStepAtLeast(int start, int step, int bound);
+
 }  // namespace internal
 
 }  // namespace gridslam::loop_closure

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <span>
 #include <vector>
@@ -277,6 +278,40 @@ TEST(PriorSearch, MaxIntoKeepsTheLargerOfEachPair) {
   EXPECT_EQ(out, (std::vector<float>{0.1F, 0.5F, 1.0F, 0.3F, 0.75F}));
   internal::MaxInto(std::span<float>(out).first(2), std::span<const float>(in).subspan(4));
   EXPECT_EQ(out, (std::vector<float>{0.7F, 9.0F, 1.0F, 0.3F, 0.75F}));
+}
+
+TEST(PriorSearch, TruncatedScoresFallFromOneOnObstaclesToZeroAtTheTruncation) {
+  const std::vector<float> distance{0.0F, 0.15F, 0.3F, 0.45F, -1.0F};
+  std::vector<float> score(distance.size(), 9.0F);
+  internal::TruncatedScores(distance, static_cast<float>(1.0 / 0.3), score);
+  EXPECT_EQ(score[0], 1.0F);
+  EXPECT_EQ(score[1], 1.0F - 0.15F * static_cast<float>(1.0 / 0.3));
+  EXPECT_EQ(score[2], 0.0F);
+  EXPECT_EQ(score[3], 0.0F);  // beyond the truncation
+  EXPECT_EQ(score[4], 0.0F);  // unknown
+}
+
+TEST(PriorSearch, FirstStepAtLeastIsTheFirstLatticeStepReachingTheBound) {
+  EXPECT_EQ(internal::FirstStepAtLeast(5, 4, 0), 0);
+  EXPECT_EQ(internal::FirstStepAtLeast(0, 4, 0), 0);
+  EXPECT_EQ(internal::FirstStepAtLeast(-1, 4, 0), 1);
+  EXPECT_EQ(internal::FirstStepAtLeast(-4, 4, 0), 1);
+  EXPECT_EQ(internal::FirstStepAtLeast(-5, 4, 0), 2);
+  EXPECT_EQ(internal::FirstStepAtLeast(3, 4, 10), 2);  // 3, 7, 11
+  EXPECT_EQ(internal::FirstStepAtLeast(2, 4, 10), 2);  // 2, 6, 10
+  EXPECT_EQ(internal::FirstStepAtLeast(-7, 1, 3), 10);
+  // Far below the bound: no overflow.
+  EXPECT_EQ(internal::FirstStepAtLeast(std::numeric_limits<int>::min(), 1, 100),
+            std::numeric_limits<int>::max());
+  for (int start = -30; start <= 30; ++start) {
+    for (const int step : {1, 3, 4}) {
+      int u = 0;
+      while (start + u * step < 7) {
+        ++u;
+      }
+      EXPECT_EQ(internal::FirstStepAtLeast(start, step, 7), u) << start << " " << step;
+    }
+  }
 }
 
 }  // namespace
