@@ -27,15 +27,23 @@ bool Interpolate(const Grid2D<float>& field, const Eigen::Vector2d& p, double* v
                  Eigen::Vector2d* gradient) {
   const MapLimits& limits = field.Limits();
   const Eigen::Vector2d c = limits.ToCellCoordinates(p);
-  const int i = static_cast<int>(std::floor(c.x()));
-  const int j = static_cast<int>(std::floor(c.y()));
-  if (i < 0 || j < 0 || i + 1 >= limits.Width() || j + 1 >= limits.Height()) {
+  // floor(c) within [0, width - 2] x [0, height - 2], tested on c itself (floor(x) >= 0 iff
+  // x >= 0, floor(x) < n iff x < n for an integer n; NaN fails): on the grid, truncation is
+  // floor, without floor's work for negative numbers.
+  if (!(c.x() >= 0.0 && c.y() >= 0.0 && c.x() < limits.Width() - 1 &&
+        c.y() < limits.Height() - 1)) {
     return false;
   }
-  const double v00 = field(i, j);
-  const double v10 = field(i + 1, j);
-  const double v01 = field(i, j + 1);
-  const double v11 = field(i + 1, j + 1);
+  const int i = static_cast<int>(c.x());
+  const int j = static_cast<int>(c.y());
+  const float* row = field.data() +
+                     static_cast<std::size_t>(j) * static_cast<std::size_t>(limits.Width()) +
+                     static_cast<std::size_t>(i);
+  const float* next_row = row + limits.Width();
+  const double v00 = row[0];
+  const double v10 = row[1];
+  const double v01 = next_row[0];
+  const double v11 = next_row[1];
   if (v00 < 0.0 || v10 < 0.0 || v01 < 0.0 || v11 < 0.0) {
     return false;
   }
@@ -59,26 +67,42 @@ struct System {
 
 System Linearize(std::span<const Eigen::Vector2d> points, int stride, const Grid2D<float>& field,
                  const Pose2& T, const RefinementOptions& options) {
-  System s;
+  // The sums in locals, not in the returned System: they stay in registers instead of being
+  // stored and reloaded around every point (the points might alias the System).
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double cost = 0.0;
+  double sum_sq = 0.0;
+  int used = 0;
+  int inliers = 0;
+  const double huber = options.huber;
+  const double max_distance = options.max_distance;
   const PointTransform transform(T);
   for (std::size_t k = 0; k < points.size(); k += static_cast<std::size_t>(stride)) {
     const Eigen::Vector2d q = transform(points[k]);
     double d = 0.0;
     Eigen::Vector2d grad;
-    if (!Interpolate(field, q, &d, &grad) || d > options.max_distance) {
+    if (!Interpolate(field, q, &d, &grad) || d > max_distance) {
       continue;
     }
     // Left perturbation q' = R(dtheta) q + dt: dq'/d(dx, dy, dtheta) = [I, (-q_y, q_x)].
     const Eigen::Vector2d dq_dtheta(-q.y(), q.x());
     const Eigen::Vector3d J(grad.x(), grad.y(), grad.dot(dq_dtheta));
-    const double w = d <= options.huber ? 1.0 : options.huber / d;
-    s.H += w * J * J.transpose();
-    s.g += w * J * d;
-    s.cost += d <= options.huber ? d * d : options.huber * (2.0 * d - options.huber);
-    s.sum_sq += d * d;
-    ++s.used;
-    s.inliers += d <= options.huber ? 1 : 0;
+    const double w = d <= huber ? 1.0 : huber / d;
+    H += w * J * J.transpose();
+    g += w * J * d;
+    cost += d <= huber ? d * d : huber * (2.0 * d - huber);
+    sum_sq += d * d;
+    ++used;
+    inliers += d <= huber ? 1 : 0;
   }
+  System s;
+  s.H = H;
+  s.g = g;
+  s.cost = cost;
+  s.sum_sq = sum_sq;
+  s.used = used;
+  s.inliers = inliers;
   return s;
 }
 
