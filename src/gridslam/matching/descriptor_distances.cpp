@@ -18,9 +18,17 @@ RowMajorMatrixXf SquaredEuclideanDistances(const cv::Mat& a, const cv::Mat& b) {
   RowMajorMatrixXf d = -2.0F * (ma * mb.transpose());
   const Eigen::VectorXf na = ma.rowwise().squaredNorm();
   const Eigen::RowVectorXf nb = mb.rowwise().squaredNorm().transpose();
-  d.colwise() += na;
-  d.rowwise() += nb;
-  return d.cwiseMax(0.0F);
+  // |a|^2 + |b|^2 - 2 a.b, clamped at 0, in one pass in place: the additions in the order of
+  // d.colwise() += na, d.rowwise() += nb, then d.cwiseMax(0) (a new matrix) did them.
+  for (Eigen::Index i = 0; i < d.rows(); ++i) {
+    float* row = d.row(i).data();
+    const float norm_a = na(i);
+    for (Eigen::Index j = 0; j < d.cols(); ++j) {
+      const float v = (row[j] + norm_a) + nb(j);
+      row[j] = v < 0.0F ? 0.0F : v;  // as cwiseMax(0): std::max(v, 0)
+    }
+  }
+  return d;
 }
 
 // On x86-64 with GCC a clone using the POPCNT instruction is chosen at load time (the baseline

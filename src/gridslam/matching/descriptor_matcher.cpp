@@ -36,11 +36,64 @@ struct TopK {
     value[static_cast<std::size_t>(pos)] = v;
     index[static_cast<std::size_t>(pos)] = idx;
   }
+  // The largest value kept (infinite while fewer than k are): what an offer must beat.
+  [[nodiscard]] float Worst(int k) const { return value[static_cast<std::size_t>(k - 1)]; }
   // Smallest value among the entries other than `idx`.
   [[nodiscard]] float BestExcluding(int idx) const { return index[0] == idx ? value[1] : value[0]; }
   [[nodiscard]] bool Contains(int k, int idx) const {
     return std::find(index.begin(), index.begin() + k, idx) != index.begin() + k;
   }
+};
+
+// The gates of DescriptorMatchOptions: pairs that cannot match (Laplacian signs differ, scales
+// more than max_scale_ratio apart), with each column's side of the tests computed once.
+class Gates {
+ public:
+  Gates(const FeatureSet& a, const FeatureSet& b, const DescriptorMatchOptions& options)
+      : a_(a),
+        ratio_(options.max_scale_ratio),
+        sign_(options.use_laplacian_sign && !a.laplacian_sign.empty() && !b.laplacian_sign.empty()),
+        scale_(options.max_scale_ratio > 0.0 && !a.scales.empty() && !b.scales.empty()) {
+    if (sign_) {
+      for (const int sign : b.laplacian_sign) {
+        positive_b_.push_back(sign > 0);
+      }
+    }
+    if (scale_) {
+      scale_b_ = b.scales;
+      for (const double scale : b.scales) {
+        scaled_b_.push_back(ratio_ * scale);
+      }
+    }
+  }
+  // The row the next Blocks() calls test.
+  void SetRow(int i) {
+    const auto ui = static_cast<std::size_t>(i);
+    if (sign_) {
+      positive_a_ = a_.laplacian_sign[ui] > 0;
+    }
+    if (scale_) {
+      scale_a_ = a_.scales[ui];
+      scaled_a_ = ratio_ * a_.scales[ui];
+    }
+  }
+  [[nodiscard]] bool Blocks(int j) const {
+    const auto uj = static_cast<std::size_t>(j);
+    return (sign_ && positive_a_ != static_cast<bool>(positive_b_[uj])) ||
+           (scale_ && (scale_a_ > scaled_b_[uj] || scale_b_[uj] > scaled_a_));
+  }
+
+ private:
+  const FeatureSet& a_;
+  double ratio_;
+  bool sign_;
+  bool scale_;
+  std::vector<unsigned char> positive_b_;
+  std::vector<double> scale_b_;
+  std::vector<double> scaled_b_;  ///< max_scale_ratio * b's scale
+  bool positive_a_ = false;
+  double scale_a_ = 0.0;
+  double scaled_a_ = 0.0;
 };
 
 }  // namespace
@@ -56,30 +109,13 @@ std::vector<Match> MatchDescriptors(const FeatureSet& a, const FeatureSet& b,
                  a.descriptors.cols == b.descriptors.cols)
       << "descriptor types or lengths differ";
   const bool binary = a.descriptors.depth() == CV_8U;
-  RowMajorMatrixXf d = binary ? HammingDistances(a.descriptors, b.descriptors)
-                              : SquaredEuclideanDistances(a.descriptors, b.descriptors);
+  const RowMajorMatrixXf d = binary ? HammingDistances(a.descriptors, b.descriptors)
+                                    : SquaredEuclideanDistances(a.descriptors, b.descriptors);
   const int na = a.size();
   const int nb = b.size();
 
-  // Gates: pairs that cannot match get an infinite distance, before any nearest-neighbour search.
-  const bool gate_sign =
-      options.use_laplacian_sign && !a.laplacian_sign.empty() && !b.laplacian_sign.empty();
-  const bool gate_scale = options.max_scale_ratio > 0.0 && !a.scales.empty() && !b.scales.empty();
-  if (gate_sign || gate_scale) {
-    for (int i = 0; i < na; ++i) {
-      for (int j = 0; j < nb; ++j) {
-        const auto ui = static_cast<std::size_t>(i);
-        const auto uj = static_cast<std::size_t>(j);
-        if (gate_sign && (a.laplacian_sign[ui] > 0) != (b.laplacian_sign[uj] > 0)) {
-          d(i, j) = kInf;
-        } else if (gate_scale && (a.scales[ui] > options.max_scale_ratio * b.scales[uj] ||
-                                  b.scales[uj] > options.max_scale_ratio * a.scales[ui])) {
-          d(i, j) = kInf;
-        }
-      }
-    }
-  }
-
+  // The `keep` nearest of every row and column among the pairs the gates let through (a gated
+  // pair is never offered: no list takes it, as an infinite distance would not be taken).
   const int k = std::max(options.cross_check_k, 1);
   const int keep = std::min(k + 1, kMaxK);  // one more for the ratio test
   std::vector<TopK> rows(static_cast<std::size_t>(na));
@@ -87,13 +123,24 @@ std::vector<Match> MatchDescriptors(const FeatureSet& a, const FeatureSet& b,
   for (auto& c : cols) {
     c.Reset(keep);
   }
+  // What an offer must beat in each column, side by side: most pairs are turned away by two
+  // comparisons, without reading the columns' lists.
+  std::vector<float> col_worst(static_cast<std::size_t>(nb), kInf);
+  Gates gates(a, b, options);
   for (int i = 0; i < na; ++i) {
     TopK& row = rows[static_cast<std::size_t>(i)];
     row.Reset(keep);
+    gates.SetRow(i);
+    const float* distances = d.data() + static_cast<std::ptrdiff_t>(i) * nb;
     for (int j = 0; j < nb; ++j) {
-      const float v = d(i, j);
+      const float v = distances[j];
+      const auto uj = static_cast<std::size_t>(j);
+      if ((!(v < row.Worst(keep)) && !(v < col_worst[uj])) || gates.Blocks(j)) {
+        continue;
+      }
       row.Offer(keep, j, v);
-      cols[static_cast<std::size_t>(j)].Offer(keep, i, v);
+      cols[uj].Offer(keep, i, v);
+      col_worst[uj] = cols[uj].Worst(keep);
     }
   }
 

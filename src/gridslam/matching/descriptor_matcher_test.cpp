@@ -1,9 +1,13 @@
 #include "gridslam/matching/descriptor_matcher.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 
+#include "gridslam/matching/descriptor_distances.hpp"
 #include "gridslam/matching/internal/synthetic.hpp"
 
 namespace gridslam::matching {
@@ -144,6 +148,129 @@ TEST(MatchDescriptors, EmptySetsGiveNoMatches) {
   EXPECT_TRUE(MatchDescriptors(a, FeatureSet{}, {}).empty());
   EXPECT_TRUE(MatchDescriptors(FeatureSet{}, a, {}).empty());
   EXPECT_TRUE(MatchDescriptors(FeatureSet{}, FeatureSet{}, {}).empty());
+}
+
+// The matcher's definition on the whole distance matrix: gated pairs infinite; each row's and
+// column's `keep` nearest finite entries (ties to the lower index); the cross-check, ratio and
+// distance tests on them.
+std::vector<Match> ReferenceMatches(const FeatureSet& a, const FeatureSet& b,
+                                    const DescriptorMatchOptions& options) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  RowMajorMatrixXf d = SquaredEuclideanDistances(a.descriptors, b.descriptors);
+  for (int i = 0; i < a.size(); ++i) {
+    for (int j = 0; j < b.size(); ++j) {
+      const auto ui = static_cast<std::size_t>(i);
+      const auto uj = static_cast<std::size_t>(j);
+      if ((options.use_laplacian_sign &&
+           (a.laplacian_sign[ui] > 0) != (b.laplacian_sign[uj] > 0)) ||
+          (options.max_scale_ratio > 0.0 &&
+           (a.scales[ui] > options.max_scale_ratio * b.scales[uj] ||
+            b.scales[uj] > options.max_scale_ratio * a.scales[ui]))) {
+        d(i, j) = kInf;
+      }
+    }
+  }
+  const int k = std::max(options.cross_check_k, 1);
+  const auto nearest = [&](int n, const auto& at) {  // finite entries, nearest first
+    std::vector<int> order;
+    for (int x = 0; x < n; ++x) {
+      if (at(x) < kInf) {
+        order.push_back(x);
+      }
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return at(x) < at(y); });
+    order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(k) + 1));
+    return order;
+  };
+  const auto second_best = [](const std::vector<int>& list, int excluded, const auto& at) {
+    for (const int x : list) {
+      if (x != excluded) {
+        return at(x);
+      }
+    }
+    return kInf;
+  };
+  const double ratio = options.max_ratio * options.max_ratio;
+  std::vector<Match> matches;
+  for (int i = 0; i < a.size(); ++i) {
+    const auto in_row = [&](int j) { return d(i, j); };
+    const std::vector<int> row = nearest(b.size(), in_row);
+    int chosen = -1;
+    const int candidates = options.cross_check_k == 0 ? 1 : k;
+    for (int r = 0; r < std::min<int>(candidates, static_cast<int>(row.size())) && chosen < 0;
+         ++r) {
+      const int j = row[static_cast<std::size_t>(r)];
+      const std::vector<int> col = nearest(a.size(), [&](int x) { return d(x, j); });
+      if (options.cross_check_k == 0 ||
+          std::find(col.begin(), col.begin() + std::min<int>(k, static_cast<int>(col.size())), i) !=
+              col.begin() + std::min<int>(k, static_cast<int>(col.size()))) {
+        chosen = j;
+      }
+    }
+    if (chosen < 0) {
+      continue;
+    }
+    const double dist = d(i, chosen);
+    const auto in_col = [&](int x) { return d(x, chosen); };
+    if (options.max_ratio < 1.0 &&
+        (!(dist < ratio * second_best(row, chosen, in_row)) ||
+         (options.cross_check_k > 0 &&
+          !(dist < ratio * second_best(nearest(a.size(), in_col), i, in_col))))) {
+      continue;
+    }
+    matches.push_back({i, chosen, static_cast<float>(std::sqrt(dist))});
+  }
+  return matches;
+}
+
+// Over random sets with many equal distances (descriptors of small integers), with and without
+// the gates, for several cross-checks and ratios: the matcher's matches are the definition's,
+// to the last bit of their distances.
+TEST(MatchDescriptors, AgreeWithTheDefinitionOnTheWholeDistanceMatrix) {
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> value(0, 2);
+  std::uniform_real_distribution<double> scale(0.5, 2.0);
+  const auto random_set = [&](int n) {
+    std::vector<std::vector<float>> rows(static_cast<std::size_t>(n), std::vector<float>(4));
+    std::vector<int> signs;
+    for (auto& r : rows) {
+      for (float& x : r) {
+        x = static_cast<float>(value(random));
+      }
+      signs.push_back(value(random) == 0 ? -1 : 1);
+    }
+    FeatureSet s = Set(rows, signs);
+    for (int k = 0; k < n; ++k) {
+      s.scales.push_back(scale(random));
+    }
+    return s;
+  };
+  int compared = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const FeatureSet a = random_set(40 + trial);
+    const FeatureSet b = random_set(50 - trial);
+    for (const int cross_check_k : {0, 1, 3}) {
+      for (const double max_ratio : {1.0, 0.9}) {
+        for (const bool gates : {false, true}) {
+          DescriptorMatchOptions options;
+          options.cross_check_k = cross_check_k;
+          options.max_ratio = max_ratio;
+          options.use_laplacian_sign = gates;
+          options.max_scale_ratio = gates ? 1.5 : 0.0;
+          const std::vector<Match> expected = ReferenceMatches(a, b, options);
+          const std::vector<Match> m = MatchDescriptors(a, b, options);
+          ASSERT_EQ(m.size(), expected.size()) << trial << " " << cross_check_k;
+          for (std::size_t x = 0; x < m.size(); ++x) {
+            EXPECT_EQ(m[x].index_a, expected[x].index_a);
+            EXPECT_EQ(m[x].index_b, expected[x].index_b);
+            EXPECT_EQ(m[x].distance, expected[x].distance);
+          }
+          compared += static_cast<int>(m.size());
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 500);
 }
 
 TEST(FeatureSetError, ReportsInconsistentSets) {
