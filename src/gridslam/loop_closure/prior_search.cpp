@@ -82,6 +82,22 @@ int FirstStepAtLeast(int start, int step, int bound) {
   return static_cast<int>(std::min<long long>(steps, std::numeric_limits<int>::max()));
 }
 
+void MaxOf(std::span<float> out, std::span<const float> a, std::span<const float> b) {
+  const std::size_t n = out.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = a[i] < b[i] ? b[i] : a[i];
+  }
+}
+
+void ShiftedMax(std::span<float> out, std::span<const float> in, int shift) {
+  const std::size_t n = out.size();
+  const std::size_t offset = std::min(n, static_cast<std::size_t>(shift));
+  const std::size_t shifted = n - offset;  // the values with a partner `shift` further on
+  MaxOf(out.first(shifted), in.first(shifted), in.subspan(offset, shifted));
+  std::copy_n(in.begin() + static_cast<std::ptrdiff_t>(shifted), offset,
+              out.begin() + static_cast<std::ptrdiff_t>(shifted));
+}
+
 }  // namespace internal
 
 namespace {
@@ -256,43 +272,39 @@ class BranchAndBound {
     std::vector<float>& base = buffers_.base;
     rows.resize(cells);
     base.resize(cells);
-    std::copy_n(buffers_.score.begin(), cells, rows.begin());
     for (int j = 0; j < h; ++j) {
       const std::span<float> out = row(rows, j);
       const std::span<float> in = row(buffers_.score, j);
-      for (int d = 1; d < lattice_.step && d < w; ++d) {
+      internal::ShiftedMax(out, in, std::min(1, lattice_.step - 1));
+      for (int d = 2; d < lattice_.step && d < w; ++d) {
         internal::MaxInto(out.first(static_cast<std::size_t>(w - d)),
                           in.subspan(static_cast<std::size_t>(d)));
       }
     }
-    std::copy(rows.begin(), rows.end(), base.begin());
     for (int j = 0; j < h; ++j) {
-      for (int d = 1; d < lattice_.step && j + d < h; ++d) {
-        internal::MaxInto(row(base, j), row(rows, j + d));
+      const std::span<float> out = row(base, j);
+      internal::MaxOf(out, row(rows, j),
+                      row(rows, std::min(j + std::min(1, lattice_.step - 1), h - 1)));
+      for (int d = 2; d < lattice_.step && j + d < h; ++d) {
+        internal::MaxInto(out, row(rows, j + d));
       }
     }
     if (buffers_.pools.size() < static_cast<std::size_t>(levels_)) {
       buffers_.pools.resize(static_cast<std::size_t>(levels_));
     }
     // Level L from level L - 1: the larger of (i, j) and (i + shift, j) where that lies on the
-    // grid (into `rows`), then the larger of that at (i, j) and (i, j + shift).
+    // grid (into `rows`), then the larger of that at (i, j) and at (i, j + shift) where that does.
     std::vector<float>* previous = &base;
     for (int level = 1; level <= levels_; ++level) {
       const int shift = (1 << (level - 1)) * lattice_.step;
-      std::copy(previous->begin(), previous->begin() + static_cast<std::ptrdiff_t>(cells),
-                rows.begin());
-      if (shift < w) {
-        for (int j = 0; j < h; ++j) {
-          internal::MaxInto(row(rows, j).first(static_cast<std::size_t>(w - shift)),
-                            row(*previous, j).subspan(static_cast<std::size_t>(shift)));
-        }
+      for (int j = 0; j < h; ++j) {
+        internal::ShiftedMax(row(rows, j), row(*previous, j), shift);
       }
       std::vector<float>& pool = buffers_.pools[static_cast<std::size_t>(level - 1)];
       pool.resize(cells + 1);  // with the zero cell
-      std::copy(rows.begin(), rows.end(), pool.begin());
       pool.back() = 0.0F;
-      for (int j = 0; j + shift < h; ++j) {
-        internal::MaxInto(row(pool, j), row(rows, j + shift));
+      for (int j = 0; j < h; ++j) {
+        internal::MaxOf(row(pool, j), row(rows, j), row(rows, j + shift < h ? j + shift : j));
       }
       previous = &pool;
     }

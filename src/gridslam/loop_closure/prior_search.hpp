@@ -146,6 +146,14 @@ void BlockCells(std::span<const int> ci, std::span<const int> cj, int di, int dj
 /// `in` holds at least as many values. The passes that build the prior search's max pools.
 void MaxInto(std::span<float> out, std::span<const float> in);
 
+/// out[i] = the larger of a[i] and b[i] (as std::max(a[i], b[i])), for i < out.size(); `out`
+/// does not overlap `a` or `b` unless it is one of them.
+void MaxOf(std::span<float> out, std::span<const float> a, std::span<const float> b);
+
+/// out[i] = the larger of in[i] and in[i + shift] where i + shift < out.size(), in[i] beyond
+/// (shift >= 0; `in` holds out.size() values, `out` does not overlap it).
+void ShiftedMax(std::span<float> out, std::span<const float> in, int shift);
+
 /// score[c] = max(0, 1 - distance[c] / truncation) as the prior search scores a point on cell c
 /// (in floats: 1 - d * inv_truncation), 0 on unknown cells (negative distances), for every
 /// cell of `distance`; `score` holds at least as many.

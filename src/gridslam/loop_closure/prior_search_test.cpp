@@ -280,6 +280,25 @@ TEST(PriorSearch, MaxIntoKeepsTheLargerOfEachPair) {
   EXPECT_EQ(out, (std::vector<float>{0.7F, 9.0F, 1.0F, 0.3F, 0.75F}));
 }
 
+TEST(PriorSearch, MaxOfKeepsTheLargerOfEachPair) {
+  const std::vector<float> a{0.0F, 0.5F, 1.0F, 0.25F};
+  const std::vector<float> b{0.1F, 0.5F, 0.0F, 0.3F, 9.0F};
+  std::vector<float> out(a.size());
+  internal::MaxOf(out, a, b);  // b's last value is past out's end: not read
+  EXPECT_EQ(out, (std::vector<float>{0.1F, 0.5F, 1.0F, 0.3F}));
+}
+
+TEST(PriorSearch, ShiftedMaxPairsEachValueWithTheOneShiftFurtherOn) {
+  const std::vector<float> in{0.2F, 0.9F, 0.1F, 0.4F, 0.3F};
+  std::vector<float> out(in.size());
+  internal::ShiftedMax(out, in, 2);
+  EXPECT_EQ(out, (std::vector<float>{0.2F, 0.9F, 0.3F, 0.4F, 0.3F}));
+  internal::ShiftedMax(out, in, 0);
+  EXPECT_EQ(out, in);
+  internal::ShiftedMax(out, in, 7);  // beyond the end: every value alone
+  EXPECT_EQ(out, in);
+}
+
 TEST(PriorSearch, TruncatedScoresFallFromOneOnObstaclesToZeroAtTheTruncation) {
   const std::vector<float> distance{0.0F, 0.15F, 0.3F, 0.45F, -1.0F};
   std::vector<float> score(distance.size(), 9.0F);
