@@ -57,7 +57,9 @@ nlohmann::json StatsJson(const pipeline::MapperStats& s) {
         {"online_optimization", s.seconds_optimization},
         {"final_optimization", s.seconds_final},
         {"fusion", s.seconds_fusion},
-        {"cpu_worker", s.cpu_seconds_worker}}}};
+        {"cpu_worker", s.cpu_seconds_worker},
+        {"caller_blocked", s.seconds_caller_blocked},
+        {"worker_idle", s.seconds_worker_idle}}}};
 }
 
 nlohmann::json MapReport(const pipeline::MapperResult& result,

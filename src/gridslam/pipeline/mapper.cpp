@@ -10,6 +10,16 @@
 
 namespace gridslam::pipeline {
 
+namespace {
+
+// Key maps queued for the worker at most. Loop closures come in bursts, and so do key maps (fast
+// motion): a queue of a few would leave one thread idle while the other catches up.
+constexpr std::size_t kMaxQueuedKeyMaps = 32;
+// The caller describes a queued key map when this many wait undescribed (the worker is behind).
+constexpr std::size_t kHelpBacklog = 3;
+
+}  // namespace
+
 int ComputeOptions::Threads() const {
   if (threads > 0) {
     return threads;
@@ -39,8 +49,11 @@ Mapper::Impl::Impl(const MapperOptions& mapper_options, int num_robots)
         loop_closure::AppearanceIndex::kDefaultRatio, appearance_rng);
   }
   if (options.compute.Threads() >= 2) {
-    // A few key maps may wait: each holds its grid (0.4 MB at the defaults).
-    worker = std::make_unique<KeyMapWorker>([this](KeyMapJob& job) { IntegrateKeyMap(job); }, 4);
+    // Key maps may wait while the worker closes loops: each holds its grid (0.4 MB at the
+    // defaults) and, once described, its description.
+    worker = std::make_unique<KeyMapWorker>(
+        [this](KeyMapJob& job) { IntegrateKeyMap(job); },
+        [this](KeyMapJob& job) { job.described = Describe(job.key_map); }, kMaxQueuedKeyMaps);
   }
 }
 
@@ -126,11 +139,9 @@ void Mapper::Impl::SubmitKeyMap(int robot, keymap::KeyMap key_map, Time time) {
     return;
   }
   // The worker integrates; the description goes to whichever thread is free: the worker, unless
-  // key maps are already waiting for it (then this thread describes the new one).
-  if (worker->Queued() > 0) {
-    job.described = Describe(job.key_map);
-  }
+  // key maps pile up undescribed (then this thread describes the newest).
   worker->Push(std::move(job));
+  worker->Help(kHelpBacklog);
 }
 
 DescribedKeyMap Mapper::Impl::Describe(const keymap::KeyMap& key_map) const {

@@ -103,6 +103,11 @@ struct MapperStats {
   /// CPU time of the worker thread that integrated the key maps (compute.threads >= 2), up to
   /// the end of the log [s]; 0 with one thread.
   double cpu_seconds_worker = 0.0;
+  /// How well the two threads kept each other busy (compute.threads >= 2; wall time [s]): the
+  /// front end's thread blocked on a full queue of key maps, and the worker waiting for a key
+  /// map after its first.
+  double seconds_caller_blocked = 0.0;
+  double seconds_worker_idle = 0.0;
   double chi2_final = 0.0;
 };
 

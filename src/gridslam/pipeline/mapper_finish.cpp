@@ -79,6 +79,8 @@ MapperResult Mapper::Impl::Finish() {
   Sync();
   if (worker != nullptr) {
     stats.cpu_seconds_worker = worker->CpuSeconds();
+    stats.seconds_caller_blocked = worker->BlockedSeconds();
+    stats.seconds_worker_idle = worker->IdleSeconds();
   }
   // Nothing is matched, described or aligned any more: the fusion below holds the run's peak of
   // memory, so the front ends' windows, the cached key-map geometries and both threads' scratch
