@@ -69,7 +69,7 @@ void TruncatedScores(std::span<const float> distance, float inv_truncation,
     // max(0, 1 - d / truncation) on known cells, 0 on unknown ones, as one select (no branch:
     // the loop vectorizes).
     const float s = 1.0F - distance[c] * inv_truncation;
-    score[c] = (distance[c] >= 0.0F) & (s > 0.0F) ? s : 0.0F;
+    score[c] = ((distance[c] >= 0.0F) & (s > 0.0F)) ? s : 0.0F;
   }
 }
 
