@@ -108,7 +108,8 @@ void SgdOptimizer::AddEdge(int from, int to, const Pose2& T_i_j,
     // One tree, or two trees anchored at fixed vertices (the path meets at the virtual root).
     FillEdgeInfo(edges_.back());
     InsertSorted(k);
-    RaiseRates(edges_.back());
+    RaiseRates(edges_.back());  // on the loop's path in the tree as it grew
+    tree_stale_ = true;
     return;
   }
   // Two components join, at least one of them anchored only by our automatic choice: move that
@@ -166,6 +167,7 @@ void SgdOptimizer::RaiseRates(const SgdEdge& edge) {
 
 void SgdOptimizer::Rebuild() {
   graph_synced_ = false;
+  tree_stale_ = false;
   paths_.clear();  // The tree changes: every path is walked again.
   path_nodes_.clear();
   path_free_.clear();

@@ -21,7 +21,9 @@
 // edge. Every node keeps its own schedule t_n (per-node learning rates, Grisetti 2009): it grows by
 // one per iteration and is not restarted; a new edge that is inconsistent (chi^2 above a
 // threshold) lowers t_n on its path in proportion, so only the affected part speeds up. Joining
-// two components moves the one without a fixed vertex rigidly onto the new edge.
+// two components moves the one without a fixed vertex rigidly onto the new edge. With
+// SgdOptions::rebuild_tree the tree of the graph as it grew is rebuilt before the next iteration
+// once a loop edge has been added, so that the closures' paths stay short.
 //
 // Not thread-safe; one optimizer per graph.
 #pragma once
@@ -49,7 +51,8 @@ class SgdOptimizer {
   /// Adds an edge between existing vertices (checked), with PoseGraph::AddEdge's contract.
   void AddEdge(int from, int to, const Pose2& T_i_j, const Eigen::Matrix3d& information);
 
-  /// Runs `n` iterations (one preconditioner update and one sweep over all edges each).
+  /// Runs `n` iterations (one preconditioner update and one sweep over all edges each). With
+  /// options.rebuild_tree, a loop closed since the tree was built rebuilds it first.
   void Iterate(int n = 1);
 
   /// The graph with the current estimates.
@@ -110,6 +113,7 @@ class SgdOptimizer {
   SgdOptions options_;
   mutable PoseGraph graph_;
   mutable bool graph_synced_ = true;
+  bool tree_stale_ = false;  ///< An edge closed a loop since the tree was built.
   int iterations_ = 0;
 
   // Per vertex index.

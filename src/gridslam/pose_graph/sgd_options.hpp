@@ -25,6 +25,14 @@ struct SgdOptions {
   /// learning rate of the nodes on its path in proportion; consistent edges leave the schedule
   /// alone [chi^2, 3 dof; 7.81 = 95 %].
   double incremental_chi2_threshold = 7.81;
+  /// Incremental mode: the first Iterate() after an edge that closes a loop builds the spanning
+  /// tree again for the whole graph (as `tree` says), keeping every node's schedule t_n. A tree
+  /// grown leaf by leaf is the robot's path, on which a closure's path runs around the whole loop:
+  /// an iteration then costs the sum of the loops' lengths, which grows with the square of a long
+  /// run. Off by default: the online mapper's corrections then take effect at once, which helps
+  /// large loops but lets the first group of a look-alike place win (docs/optimizer.md, "Online:
+  /// the tree of the current graph").
+  bool rebuild_tree = false;
 
   template <class V>
   void Visit(V& v) {
@@ -33,6 +41,8 @@ struct SgdOptions {
       "Spanning tree: auto (shorter of toro/bfs), toro (smallest-id parent), bfs or chain");
     v("incremental_chi2_threshold", incremental_chi2_threshold,
       "New edges above this chi^2 raise the learning rates on their path [chi^2]");
+    v("rebuild_tree", rebuild_tree,
+      "Incremental mode: build the spanning tree again after edges that close loops");
   }
   [[nodiscard]] Status Validate() const {
     GRIDSLAM_RETURN_IF_ERROR(

@@ -34,6 +34,9 @@ Eigen::Vector3d RotatedProduct(const Eigen::Matrix3d& information, double c, dou
 }  // namespace
 
 void SgdOptimizer::Iterate(int n) {
+  if (n > 0 && tree_stale_ && options_.rebuild_tree) {
+    Rebuild();  // keeps every node's age: the schedule goes on
+  }
   IndexPaths();
   graph_synced_ = n <= 0 && graph_synced_;  // graph() copies the poses when it is next read.
   for (int it = 0; it < n; ++it) {
