@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "gridslam/io/png_codec.hpp"
+#include "gridslam/quality/local_confirmation.hpp"
 #include "gridslam/quality/loop_residuals.hpp"
 #include "gridslam/quality/map_self_check.hpp"
 #include "gridslam/quality/quality_image.hpp"
@@ -63,8 +64,13 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
         }
       }
     }
-    quality::SelfCheckResult check =
-        quality::CheckMap(result.maps[c], posed, fusion, options, threads);
+    std::vector<std::vector<std::uint8_t>> confirmed;
+    if (options.local_travel > 0.0) {
+      confirmed = quality::LocalConfirmation(posed, fusion, options, threads);
+    }
+    quality::SelfCheckResult check = quality::CheckMap(
+        result.maps[c], posed, fusion, options, threads, confirmed.empty() ? nullptr : &confirmed);
+    confirmed = {};
     total.Merge(check.stats);
     const std::string name =
         result.maps.size() == 1 ? "map_quality.png" : "map_quality_" + std::to_string(c) + ".png";
@@ -79,6 +85,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     per_map.push_back({{"image", name},
                        {"score", check.stats.Score()},
                        {"suspect", check.stats.Suspect(options)},
+                       {"verdict", quality::ToString(check.stats.Verdict(options))},
                        {"scans", check.stats.scans},
                        {"returns", check.stats.returns}});
   }
@@ -90,6 +97,7 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     }
   }
   const quality::LoopResidualStats residuals = quality::LoopResiduals(result.graph, loops);
+  const quality::SelfCheckVerdict verdict = total.Verdict(options);
   const bool suspect = total.Suspect(options);
   nlohmann::json by_range = nlohmann::json::array();
   for (int b = 0; b < quality::SelfCheckStats::kRangeBands; ++b) {
@@ -101,7 +109,11 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
     by_range.push_back(band);
   }
   outcome.report = {{"score", total.Score()},
+                    {"raw_score", total.RawScore()},
+                    {"local_score", total.LocalScore()},
+                    {"local_travel_m", options.local_travel},
                     {"suspect", suspect},
+                    {"verdict", quality::ToString(verdict)},
                     {"suspect_below", options.suspect_below},
                     {"agreement_distance_m", options.agreement_distance},
                     {"contradicting_share", total.Contradiction()},
@@ -117,12 +129,18 @@ Result<QualityOutcome> RunSelfCheck(const std::string& dir, const pipeline::Mapp
                       {"max_translation_m", residuals.max_translation},
                       {"median_rotation_deg", residuals.median_rotation * 180.0 / std::numbers::pi},
                       {"max_rotation_deg", residuals.max_rotation * 180.0 / std::numbers::pi}}}};
-  char line[256];
+  char line[320];
   std::snprintf(line, sizeof(line),
-                "self-check: score %.3f (%s; %.1f%% of returns contradict the map, mean distance "
-                "%.3f m); loop residuals median %.3f m, max %.3f m",
-                total.Score(), suspect ? "SUSPECT" : "consistent", 100.0 * total.Contradiction(),
-                total.MeanDistance(), residuals.median_translation, residuals.max_translation);
+                "self-check: score %.3f (%s; %.0f%% of returns confirmed by their neighbourhood, "
+                "%.1f%% contradict the map, mean distance %.3f m); loop residuals median %.3f m, "
+                "max %.3f m",
+                total.Score(),
+                verdict == quality::SelfCheckVerdict::kConsistent ? "consistent"
+                : verdict == quality::SelfCheckVerdict::kContradicted
+                    ? "SUSPECT: the map contradicts its scans"
+                    : "SUSPECT: the scans disagree with their neighbours",
+                100.0 * total.LocalScore(), 100.0 * total.Contradiction(), total.MeanDistance(),
+                residuals.median_translation, residuals.max_translation);
   outcome.summary = line;
   return outcome;
 }

@@ -4,15 +4,26 @@
 #include <cmath>
 #include <cstdint>
 
+#include "gridslam/common/check.hpp"
 #include "gridslam/common/parallel.hpp"
 #include "gridslam/distance_transform/euclidean_distance_transform.hpp"
 #include "gridslam/grid/log_odds.hpp"
 #include "gridslam/grid/scan_points.hpp"
+#include "gridslam/quality/local_confirmation.hpp"
 
 namespace gridslam::quality {
 
 double SelfCheckStats::Score() const {
+  return confirmed > 0 ? static_cast<double>(confirmed_agreeing) / static_cast<double>(confirmed)
+                       : 1.0;
+}
+
+double SelfCheckStats::RawScore() const {
   return returns > 0 ? static_cast<double>(agreeing) / static_cast<double>(returns) : 1.0;
+}
+
+double SelfCheckStats::LocalScore() const {
+  return returns > 0 ? static_cast<double>(confirmed) / static_cast<double>(returns) : 1.0;
 }
 
 double SelfCheckStats::Contradiction() const {
@@ -35,14 +46,38 @@ int SelfCheckStats::RangeBand(double range) {
                           kRangeBandEdges.begin());
 }
 
+std::string_view ToString(SelfCheckVerdict verdict) {
+  switch (verdict) {
+    case SelfCheckVerdict::kConsistent:
+      return "consistent";
+    case SelfCheckVerdict::kContradicted:
+      return "contradicted";
+    case SelfCheckVerdict::kUnconfirmed:
+      return "unconfirmed";
+  }
+  return "unknown";
+}
+
+SelfCheckVerdict SelfCheckStats::Verdict(const SelfCheckOptions& options) const {
+  if (Score() < options.suspect_below) {
+    return SelfCheckVerdict::kContradicted;
+  }
+  if (LocalScore() < options.suspect_below) {
+    return SelfCheckVerdict::kUnconfirmed;
+  }
+  return SelfCheckVerdict::kConsistent;
+}
+
 bool SelfCheckStats::Suspect(const SelfCheckOptions& options) const {
-  return Score() < options.suspect_below;
+  return Verdict(options) != SelfCheckVerdict::kConsistent;
 }
 
 void SelfCheckStats::Merge(const SelfCheckStats& other) {
   scans += other.scans;
   returns += other.returns;
   agreeing += other.agreeing;
+  confirmed += other.confirmed;
+  confirmed_agreeing += other.confirmed_agreeing;
   contradicting += other.contradicting;
   outside += other.outside;
   distance_sum += other.distance_sum;
@@ -63,6 +98,7 @@ struct Return {
   int i = 0;
   int j = 0;
   int band = 0;              ///< SelfCheckStats::RangeBand of its range.
+  bool confirmed = true;     ///< Confirmed by its own stretch of trajectory.
   float to_occupied = 0.0F;  ///< Distance to the nearest occupied cell [m], +inf beyond the clamp.
   float to_not_free = 0.0F;  ///< Distance to the nearest cell that is not free [m], idem.
 };
@@ -105,14 +141,16 @@ void BlockDistances(const TiledGrid<float>& log_odds, const fusion::FusionOption
 }  // namespace
 
 SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
-                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options) {
-  return CheckMap(TiledGrid<float>::FromDense(log_odds, kUnknownLogOdds), scans, fusion, options);
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options,
+                         const std::vector<std::vector<std::uint8_t>>* confirmed) {
+  return CheckMap(TiledGrid<float>::FromDense(log_odds, kUnknownLogOdds), scans, fusion, options, 1,
+                  confirmed);
 }
 
 SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
                          const std::vector<fusion::PosedScan>& scans,
                          const fusion::FusionOptions& fusion, const SelfCheckOptions& options,
-                         int threads) {
+                         int threads, const std::vector<std::vector<std::uint8_t>>* confirmed) {
   SelfCheckResult result;
   const MapLimits& limits = log_odds.Limits();
   result.returns_per_cell = TiledGrid<float>(limits, 0.0F);
@@ -120,29 +158,26 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
   SelfCheckStats& stats = result.stats;
   // The returns inside the map, in replay order.
   std::vector<Return> returns;
-  const Pose2* last = nullptr;
-  for (const fusion::PosedScan& s : scans) {
-    if (s.scan == nullptr) {
-      continue;
-    }
-    if (last != nullptr &&
-        (s.T_map_base.translation() - last->translation()).norm() < options.min_motion &&
-        std::abs(NormalizeAngle(s.T_map_base.theta() - last->theta())) < options.min_rotation) {
-      continue;
-    }
-    last = &s.T_map_base;
+  for (const std::size_t n : ReplayedScans(scans, options)) {
+    const fusion::PosedScan& s = scans[n];
     ++stats.scans;
     const ScanReturns points = ExtractScanReturns(*s.scan, s.T_base_laser, options.max_range);
+    const std::vector<std::uint8_t>* flags = confirmed != nullptr ? &(*confirmed)[n] : nullptr;
+    GRIDSLAM_CHECK(flags == nullptr || flags->size() == points.points.size());
     const PointTransform to_map(s.T_map_base);
-    for (const Eigen::Vector2d& q : points.points) {
+    for (std::size_t p = 0; p < points.points.size(); ++p) {
+      const Eigen::Vector2d& q = points.points[p];
       const Eigen::Array2i cell = limits.CellIndex(to_map(q));
       if (!limits.Contains(cell)) {
         ++stats.outside;
         continue;
       }
-      returns.push_back(
-          {cell.x(), cell.y(), SelfCheckStats::RangeBand((q - points.origin).norm())});
-      result.returns_per_cell.Mutable(cell) += 1.0F;
+      const bool is_confirmed = flags == nullptr || (*flags)[p] != 0;
+      returns.push_back({cell.x(), cell.y(), SelfCheckStats::RangeBand((q - points.origin).norm()),
+                         is_confirmed});
+      if (is_confirmed) {
+        result.returns_per_cell.Mutable(cell) += 1.0F;
+      }
     }
   }
   // Distances to the walls, block by block: the returns grouped by block (counting sort).
@@ -220,10 +255,12 @@ SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
     ++stats.band_returns[static_cast<std::size_t>(r.band)];
     const double d = r.to_occupied;
     stats.distance_sum += std::min(d, options.distance_clamp);
+    stats.confirmed += r.confirmed ? 1 : 0;
     if (d <= agree) {
       ++stats.agreeing;
       ++stats.band_agreeing[static_cast<std::size_t>(r.band)];
-    } else {
+      stats.confirmed_agreeing += r.confirmed ? 1 : 0;
+    } else if (r.confirmed) {
       result.disagreeing_per_cell.Mutable(r.i, r.j) += 1.0F;
     }
     if (r.to_not_free > agree) {

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "gridslam/fusion/global_grid.hpp"
@@ -19,14 +21,29 @@
 
 namespace gridslam::quality {
 
+/// The self-check's verdict on a map (report.json quality.verdict, ToString).
+enum class SelfCheckVerdict {
+  kConsistent,    ///< Both shares at or above suspect_below.
+  kContradicted,  ///< Score() below suspect_below: the map contradicts what the scans confirm.
+  /// LocalScore() below suspect_below (and Score() not): too few returns are confirmed by their
+  /// own stretch of trajectory for the score to mean anything; the scans disagree with their
+  /// neighbours (a front end that failed at every step, or a laser that sees little but noise).
+  kUnconfirmed,
+};
+[[nodiscard]] std::string_view ToString(SelfCheckVerdict verdict);
+
 /// Counts and shares of one map (or of several, merged).
 struct SelfCheckStats {
-  long scans = 0;             ///< Scans replayed.
-  long returns = 0;           ///< Their returns inside the map.
-  long agreeing = 0;          ///< Returns within agreement_distance of an occupied cell.
-  long contradicting = 0;     ///< Returns with only free cells within agreement_distance.
-  long outside = 0;           ///< Returns outside the map's limits (not counted in `returns`).
-  double distance_sum = 0.0;  ///< Sum of the clamped distances to the nearest occupied cell [m].
+  long scans = 0;     ///< Scans replayed.
+  long returns = 0;   ///< Their returns inside the map.
+  long agreeing = 0;  ///< Returns within agreement_distance of an occupied cell.
+  /// Returns confirmed by the map of their own stretch of trajectory (LocalConfirmation; all of
+  /// them when the check was given no confirmation).
+  long confirmed = 0;
+  long confirmed_agreeing = 0;  ///< Of which: agreeing with the map checked.
+  long contradicting = 0;       ///< Returns with only free cells within agreement_distance.
+  long outside = 0;             ///< Returns outside the map's limits (not counted in `returns`).
+  double distance_sum = 0.0;    ///< Sum of the clamped distances to the nearest occupied cell [m].
   /// Returns and agreeing returns by range band (kRangeBands: up to 5, 10, 20 m and beyond): a
   /// diagnostic of where in the scans the disagreement lies (report.json quality.by_range).
   static constexpr std::array<double, 3> kRangeBandEdges = {5.0, 10.0, 20.0};
@@ -34,8 +51,15 @@ struct SelfCheckStats {
   std::array<long, kRangeBands> band_returns{};
   std::array<long, kRangeBands> band_agreeing{};
 
-  /// Share of agreeing returns, 1 when there is no return [-].
+  /// The verdict's score: the share of the confirmed returns that agree with the map, 1 when
+  /// there is none [-]. A misaligned trajectory lowers it; what disagrees with any map (moving
+  /// people, glass, grazing returns) does not.
   [[nodiscard]] double Score() const;
+  /// Share of all returns that agree with the map, 1 when there is no return [-].
+  [[nodiscard]] double RawScore() const;
+  /// Share of the returns their own stretch of trajectory confirms, 1 when there is none [-]:
+  /// how much of what the laser sees is stable structure.
+  [[nodiscard]] double LocalScore() const;
   /// Share of contradicting returns [-].
   [[nodiscard]] double Contradiction() const;
   /// Mean clamped distance of a return to the nearest occupied cell [m].
@@ -44,7 +68,9 @@ struct SelfCheckStats {
   [[nodiscard]] double BandScore(int b) const;
   /// The band of a return at `range` [m].
   [[nodiscard]] static int RangeBand(double range);
-  /// Score() below options.suspect_below.
+  /// The verdict at options.suspect_below: the score is judged first.
+  [[nodiscard]] SelfCheckVerdict Verdict(const SelfCheckOptions& options) const;
+  /// Verdict() is not kConsistent.
   [[nodiscard]] bool Suspect(const SelfCheckOptions& options) const;
   /// Adds another map's counts.
   void Merge(const SelfCheckStats& other);
@@ -52,20 +78,24 @@ struct SelfCheckStats {
 
 struct SelfCheckResult {
   SelfCheckStats stats;
-  TiledGrid<float> returns_per_cell;      ///< Replayed returns per cell of the map.
+  TiledGrid<float> returns_per_cell;      ///< Confirmed replayed returns per cell of the map.
   TiledGrid<float> disagreeing_per_cell;  ///< Of which: not agreeing.
 };
 
 /// Replays `scans` (in trajectory order; borrowed) against the fused log-odds map `log_odds`,
 /// thresholded as `fusion` does for map.pgm. Scans closer than min_motion / min_rotation to the
-/// previous replayed scan are skipped. Memory: the tiles of the map the returns fall in, not the
-/// map's bounding box (distances to the walls are computed block by block around the returns,
-/// `threads` blocks at once: the same result for any number).
+/// previous replayed scan are skipped (ReplayedScans). `confirmed`: LocalConfirmation of the
+/// same scans; null counts every return as confirmed (then Score() == RawScore()). Memory: the
+/// tiles of the map the returns fall in, not the map's bounding box (distances to the walls are
+/// computed block by block around the returns, `threads` blocks at once: the same result for any
+/// number).
 SelfCheckResult CheckMap(const TiledGrid<float>& log_odds,
                          const std::vector<fusion::PosedScan>& scans,
                          const fusion::FusionOptions& fusion, const SelfCheckOptions& options,
-                         int threads = 1);
+                         int threads = 1,
+                         const std::vector<std::vector<std::uint8_t>>* confirmed = nullptr);
 SelfCheckResult CheckMap(const Grid2D<float>& log_odds, const std::vector<fusion::PosedScan>& scans,
-                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options);
+                         const fusion::FusionOptions& fusion, const SelfCheckOptions& options,
+                         const std::vector<std::vector<std::uint8_t>>* confirmed = nullptr);
 
 }  // namespace gridslam::quality

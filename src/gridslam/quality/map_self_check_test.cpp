@@ -9,79 +9,16 @@
 #include <opencv2/imgproc.hpp>
 
 #include "gridslam/grid/log_odds.hpp"
+#include "gridslam/quality/local_confirmation.hpp"
 #include "gridslam/quality/quality_image.hpp"
+#include "gridslam/quality/self_check_room_testing.hpp"
 
 namespace gridslam::quality {
 namespace {
 
-// A closed rectangular room [-6, 6] x [-3, 3] with a 2 m pillar wall at x = 0, y in [1, 3].
-// Returns the range along the ray from `o` in direction `d` (unit) to the first wall.
-double RayRange(const Eigen::Vector2d& o, const Eigen::Vector2d& d) {
-  double best = std::numeric_limits<double>::infinity();
-  const auto hit_x = [&](double x, double y_lo, double y_hi) {
-    if (std::abs(d.x()) < 1e-12) return;
-    const double t = (x - o.x()) / d.x();
-    const double y = o.y() + t * d.y();
-    if (t > 1e-9 && y >= y_lo && y <= y_hi) best = std::min(best, t);
-  };
-  const auto hit_y = [&](double y, double x_lo, double x_hi) {
-    if (std::abs(d.y()) < 1e-12) return;
-    const double t = (y - o.y()) / d.y();
-    const double x = o.x() + t * d.x();
-    if (t > 1e-9 && x >= x_lo && x <= x_hi) best = std::min(best, t);
-  };
-  hit_x(-6.0, -3.0, 3.0);
-  hit_x(6.0, -3.0, 3.0);
-  hit_y(-3.0, -6.0, 6.0);
-  hit_y(3.0, -6.0, 6.0);
-  hit_x(0.0, 1.0, 3.0);
-  return best;
-}
-
-// A 360-beam scan of the room from the true pose `T_world_laser`.
-LaserScan RoomScan(const Pose2& T_world_laser) {
-  LaserScan scan;
-  scan.angle_min = -std::numbers::pi;
-  scan.angle_increment = 2.0 * std::numbers::pi / 360.0;
-  scan.range_min = 0.05;
-  scan.range_max = 30.0;
-  for (int k = 0; k < 360; ++k) {
-    const double a = T_world_laser.theta() + scan.Angle(static_cast<std::size_t>(k));
-    scan.ranges.push_back(static_cast<float>(
-        RayRange(T_world_laser.translation(), Eigen::Vector2d(std::cos(a), std::sin(a)))));
-  }
-  return scan;
-}
-
-// The robot drives along y = -1.5 to the right, then back along y = -0.5 (true poses).
-std::vector<Pose2> TruePoses() {
-  std::vector<Pose2> poses;
-  for (double x = -5.0; x <= 5.0; x += 0.25) poses.emplace_back(x, -1.5, 0.0);
-  for (double x = 5.0; x >= -5.0; x -= 0.25) poses.emplace_back(x, -0.5, std::numbers::pi);
-  return poses;
-}
-
-struct SimRun {
-  std::vector<LaserScan> scans;
-  std::vector<fusion::PosedScan> posed;
-};
-
-// Scans from the true poses, placed at the estimated poses: the way back is estimated with a
-// yaw error `yaw` [rad] about the turning point and an offset `shift` [m] along y.
-SimRun MakeRun(double yaw, double shift) {
-  const std::vector<Pose2> truth = TruePoses();
-  SimRun run;
-  run.scans.reserve(truth.size());
-  for (const Pose2& p : truth) run.scans.push_back(RoomScan(p));
-  const std::size_t half = truth.size() / 2;
-  const Pose2 pivot(5.0, -1.0, 0.0);
-  const Pose2 error = pivot * Pose2(0.0, shift, yaw) * pivot.Inverse();
-  for (std::size_t k = 0; k < truth.size(); ++k) {
-    const Pose2 estimate = k < half ? truth[k] : error * truth[k];
-    run.posed.push_back({estimate, Pose2(), &run.scans[k]});
-  }
-  return run;
-}
+using testing::MakeRun;
+using testing::SimRun;
+using testing::TruePoses;
 
 SelfCheckResult Check(const SimRun& run) {
   const fusion::FusionOptions fusion;
@@ -118,6 +55,49 @@ TEST(MapSelfCheck, TheScoreFallsAsTheErrorGrows) {
     EXPECT_LT(score, previous) << "shift " << shift;
     previous = score;
   }
+}
+
+// The self-check as the mapper runs it: the returns their own stretch confirms, then the map.
+SelfCheckResult CheckConfirmed(const SimRun& run) {
+  const fusion::FusionOptions fusion;
+  const Grid2D<float> map = fusion::FuseScans(run.posed, fusion);
+  SelfCheckOptions options;
+  options.min_motion = 0.0;
+  const auto confirmed = LocalConfirmation(run.posed, fusion, options);
+  return CheckMap(map, run.posed, fusion, options, &confirmed);
+}
+
+TEST(MapSelfCheck, PassersByLowerTheRawScoreButNotTheScore) {
+  const SelfCheckResult clean = CheckConfirmed(MakeRun(0.0, 0.0));
+  SimRun run = MakeRun(0.0, 0.0);
+  // Every fourth scan of the way out sees someone 1 m ahead, over 20 beams, gone a moment later.
+  for (std::size_t s = 2; s < 40; s += 4) {
+    for (std::size_t k = 170; k <= 190; ++k) run.scans[s].ranges[k] = 1.0F;
+  }
+  const SelfCheckResult crowded = CheckConfirmed(run);
+  EXPECT_LT(crowded.stats.RawScore(), clean.stats.RawScore() - 0.005);
+  EXPECT_LT(crowded.stats.LocalScore(), clean.stats.LocalScore() - 0.005);
+  EXPECT_NEAR(crowded.stats.Score(), clean.stats.Score(), 0.002);
+  EXPECT_GT(crowded.stats.Score(), 0.97);
+}
+
+TEST(MapSelfCheck, ConfirmedReturnsStillSeeTheDoubleWalls) {
+  const SelfCheckResult good = CheckConfirmed(MakeRun(0.0, 0.0));
+  const SelfCheckResult bad = CheckConfirmed(MakeRun(5.0 * std::numbers::pi / 180.0, 0.0));
+  EXPECT_GT(bad.stats.LocalScore(), 0.97);  // each leg agrees with itself
+  EXPECT_LT(bad.stats.Score(), good.stats.Score() - 0.1);
+  const SelfCheckResult shifted = CheckConfirmed(MakeRun(0.0, 0.3));
+  EXPECT_LT(shifted.stats.Score(), good.stats.Score() - 0.1);
+  EXPECT_TRUE(bad.stats.Suspect(SelfCheckOptions{}));
+  EXPECT_FALSE(good.stats.Suspect(SelfCheckOptions{}));
+}
+
+TEST(MapSelfCheck, WithoutConfirmationEveryReturnCounts) {
+  const SelfCheckResult r = Check(MakeRun(0.0, 0.3));
+  EXPECT_EQ(r.stats.confirmed, r.stats.returns);
+  EXPECT_EQ(r.stats.confirmed_agreeing, r.stats.agreeing);
+  EXPECT_DOUBLE_EQ(r.stats.Score(), r.stats.RawScore());
+  EXPECT_DOUBLE_EQ(r.stats.LocalScore(), 1.0);
 }
 
 TEST(MapSelfCheck, RangeBandsPartitionTheReturns) {
@@ -252,25 +232,54 @@ TEST(SelfCheckStats, SharesAndMerge) {
   SelfCheckStats a;
   EXPECT_DOUBLE_EQ(a.Score(), 1.0);
   EXPECT_DOUBLE_EQ(a.Contradiction(), 0.0);
+  EXPECT_DOUBLE_EQ(a.RawScore(), 1.0);
+  EXPECT_DOUBLE_EQ(a.LocalScore(), 1.0);
   a.returns = 10;
   a.agreeing = 9;
+  a.confirmed = 10;
+  a.confirmed_agreeing = 9;
   a.contradicting = 1;
   a.distance_sum = 0.5;
   SelfCheckStats b;
   b.returns = 30;
   b.agreeing = 15;
+  b.confirmed = 20;
+  b.confirmed_agreeing = 15;
   b.contradicting = 3;
   b.distance_sum = 1.5;
   a.Merge(b);
   EXPECT_EQ(a.returns, 40);
-  EXPECT_DOUBLE_EQ(a.Score(), 24.0 / 40.0);
+  EXPECT_EQ(a.confirmed, 30);
+  EXPECT_DOUBLE_EQ(a.RawScore(), 24.0 / 40.0);
+  EXPECT_DOUBLE_EQ(a.LocalScore(), 30.0 / 40.0);
+  EXPECT_DOUBLE_EQ(a.Score(), 24.0 / 30.0);
   EXPECT_DOUBLE_EQ(a.Contradiction(), 4.0 / 40.0);
   EXPECT_DOUBLE_EQ(a.MeanDistance(), 2.0 / 40.0);
   SelfCheckOptions options;
-  options.suspect_below = 0.6;
+  options.suspect_below = 0.75;  // score 0.8, local score 0.75
   EXPECT_FALSE(a.Suspect(options));
-  options.suspect_below = 0.61;
+  options.suspect_below = 0.76;
   EXPECT_TRUE(a.Suspect(options));
+}
+
+TEST(SelfCheckStats, VerdictJudgesTheScoreThenTheLocalScore) {
+  const SelfCheckOptions options;  // suspect_below 0.8
+  SelfCheckStats s;
+  EXPECT_EQ(s.Verdict(options), SelfCheckVerdict::kConsistent);
+  s.returns = 100;
+  s.agreeing = 85;
+  s.confirmed = 90;
+  s.confirmed_agreeing = 81;  // score 0.9, local score 0.9
+  EXPECT_EQ(s.Verdict(options), SelfCheckVerdict::kConsistent);
+  EXPECT_FALSE(s.Suspect(options));
+  s.confirmed_agreeing = 70;  // score 0.78
+  EXPECT_EQ(s.Verdict(options), SelfCheckVerdict::kContradicted);
+  s.confirmed = 70;  // local score 0.7, score 1: what is confirmed agrees, but too little is
+  EXPECT_EQ(s.Verdict(options), SelfCheckVerdict::kUnconfirmed);
+  EXPECT_TRUE(s.Suspect(options));
+  EXPECT_EQ(ToString(SelfCheckVerdict::kUnconfirmed), "unconfirmed");
+  EXPECT_EQ(ToString(SelfCheckVerdict::kContradicted), "contradicted");
+  EXPECT_EQ(ToString(SelfCheckVerdict::kConsistent), "consistent");
 }
 
 TEST(SelfCheckOptions, ValidateRejectsBadValues) {
@@ -287,6 +296,11 @@ TEST(SelfCheckOptions, ValidateRejectsBadValues) {
   o = SelfCheckOptions{};
   o.min_motion = -1.0;
   EXPECT_FALSE(o.Validate().ok());
+  o = SelfCheckOptions{};
+  o.local_travel = -1.0;
+  EXPECT_FALSE(o.Validate().ok());
+  o.local_travel = 0.0;  // off
+  EXPECT_TRUE(o.Validate().ok());
 }
 
 }  // namespace

@@ -1,0 +1,111 @@
+#include "gridslam/quality/local_confirmation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "gridslam/grid/scan_points.hpp"
+#include "gridslam/quality/self_check_room_testing.hpp"
+
+namespace gridslam::quality {
+namespace {
+
+using testing::MakeRun;
+using testing::SimRun;
+
+SelfCheckOptions EveryScan() {
+  SelfCheckOptions options;
+  options.min_motion = 0.0;  // replay every scan
+  return options;
+}
+
+// The scan's beams straight ahead (index 180 of 360, angle 0) end on a passer-by 1 m ahead.
+void AddPasserBy(LaserScan& scan) {
+  for (std::size_t k = 178; k <= 182; ++k) {
+    scan.ranges[k] = 1.0F;
+  }
+}
+
+TEST(ReplayedScans, KeepsOneScanPerMinMotionAndSkipsMissingScans) {
+  SimRun run = MakeRun(0.0, 0.0);  // poses 0.25 m apart, 41 per leg
+  run.posed[1].scan = nullptr;
+  SelfCheckOptions options;
+  options.min_motion = 0.5;
+  options.min_rotation = 10.0;
+  const std::vector<std::size_t> replayed = ReplayedScans(run.posed, options);
+  ASSERT_GE(replayed.size(), 3U);
+  EXPECT_EQ(replayed[0], 0U);
+  EXPECT_EQ(replayed[1], 2U);
+  EXPECT_EQ(replayed[2], 4U);
+  EXPECT_EQ(ReplayedScans(run.posed, EveryScan()).size(), run.posed.size() - 1);
+}
+
+TEST(LocalConfirmation, OneFlagPerReturnOfEveryReplayedScan) {
+  SimRun run = MakeRun(0.0, 0.0);
+  run.posed[3].scan = nullptr;
+  const SelfCheckOptions options = EveryScan();
+  const auto flags = LocalConfirmation(run.posed, fusion::FusionOptions{}, options);
+  ASSERT_EQ(flags.size(), run.posed.size());
+  EXPECT_TRUE(flags[3].empty());
+  long confirmed = 0;
+  long returns = 0;
+  for (std::size_t s = 0; s < run.posed.size(); ++s) {
+    if (s == 3) continue;
+    const ScanReturns r = ExtractScanReturns(run.scans[s], Pose2(), options.max_range);
+    ASSERT_EQ(flags[s].size(), r.points.size()) << "scan " << s;
+    for (const auto f : flags[s]) confirmed += f;
+    returns += static_cast<long>(r.points.size());
+  }
+  // The walls of a static room, seen along one leg at a time: nearly every return confirmed.
+  EXPECT_GT(static_cast<double>(confirmed) / static_cast<double>(returns), 0.97);
+}
+
+TEST(LocalConfirmation, APasserByIsNotConfirmedByTheScansAroundIt) {
+  SimRun run = MakeRun(0.0, 0.0);
+  AddPasserBy(run.scans[8]);  // seen once; the scans before look through the spot
+  const auto flags = LocalConfirmation(run.posed, fusion::FusionOptions{}, EveryScan());
+  const ScanReturns r = ExtractScanReturns(run.scans[8], Pose2(), 30.0);
+  int passer_by = 0;
+  int confirmed = 0;
+  for (std::size_t p = 0; p < r.points.size(); ++p) {
+    if (std::abs(r.points[p].norm() - 1.0) < 1e-6) {
+      ++passer_by;
+      confirmed += flags[8][p];
+    }
+  }
+  EXPECT_EQ(passer_by, 5);
+  EXPECT_EQ(confirmed, 0);
+}
+
+TEST(LocalConfirmation, AMisalignedLegIsConfirmedByItsOwnStretch) {
+  // The way back is off by 0.5 m; each leg is one stretch of 10 m, so each leg's walls confirm
+  // its own returns: what the final map then contradicts is the misalignment.
+  const SimRun run = MakeRun(0.0, 0.5);
+  const auto flags = LocalConfirmation(run.posed, fusion::FusionOptions{}, EveryScan());
+  long confirmed = 0;
+  long returns = 0;
+  for (const auto& f : flags) {
+    for (const auto v : f) confirmed += v;
+    returns += static_cast<long>(f.size());
+  }
+  EXPECT_GT(static_cast<double>(confirmed) / static_cast<double>(returns), 0.97);
+  // One stretch over both legs would see the double walls itself.
+  SelfCheckOptions whole = EveryScan();
+  whole.local_travel = 1000.0;
+  long whole_confirmed = 0;
+  for (const auto& f : LocalConfirmation(run.posed, fusion::FusionOptions{}, whole)) {
+    for (const auto v : f) whole_confirmed += v;
+  }
+  EXPECT_LT(whole_confirmed, confirmed);
+}
+
+TEST(LocalConfirmation, TheSameFlagsWhateverTheThreads) {
+  SimRun run = MakeRun(0.0, 0.3);
+  AddPasserBy(run.scans[8]);
+  SelfCheckOptions options = EveryScan();
+  options.local_travel = 3.0;  // several stretches
+  const auto one = LocalConfirmation(run.posed, fusion::FusionOptions{}, options, 1);
+  const auto three = LocalConfirmation(run.posed, fusion::FusionOptions{}, options, 3);
+  EXPECT_EQ(one, three);
+}
+
+}  // namespace
+}  // namespace gridslam::quality
