@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "gridslam/common/angles.hpp"
 #include "gridslam/common/parallel.hpp"
@@ -45,7 +46,19 @@ void ConfirmStretch(const std::vector<fusion::PosedScan>& scans,
   fusion::FusionOptions local = fusion;
   local.min_motion = 0.0;
   local.min_rotation = 0.0;
-  const Grid2D<float> map = fusion::FuseScans(posed, local);
+  Grid2D<float> map;
+  try {
+    map = fusion::FuseScans(posed, local);
+  } catch (const std::length_error&) {
+    // The stretch's returns span more cells than a map may hold (a resolution far finer than its
+    // range): no baseline, every return of the stretch counts.
+    for (const std::size_t s : stretch) {
+      flags[s].assign(ExtractScanReturns(*scans[s].scan, scans[s].T_base_laser, options.max_range)
+                          .points.size(),
+                      1);
+    }
+    return;
+  }
   const MapLimits& limits = map.Limits();
   const auto occupied = static_cast<float>(ProbabilityToLogOdds(fusion.occupied_probability));
   // The cells within agreement_distance of a return's cell (centre to centre, with the same

@@ -26,7 +26,8 @@ std::vector<std::size_t> ReplayedScans(const std::vector<fusion::PosedScan>& sca
 /// not; an empty vector for the scans not replayed (ReplayedScans). The replayed scans are cut,
 /// in order, into stretches of options.local_travel metres of travel; each stretch's scans are
 /// fused alone (FuseScans with `fusion`'s sensor model) and a return is confirmed when an
-/// occupied cell of its stretch's map lies within options.agreement_distance. Stretches are
+/// occupied cell of its stretch's map lies within options.agreement_distance. A stretch too large
+/// to fuse (more than fusion::kMaxFusedCells) confirms all its returns. Stretches are
 /// independent: `threads` of them at once give the same flags as one.
 std::vector<std::vector<std::uint8_t>> LocalConfirmation(
     const std::vector<fusion::PosedScan>& scans, const fusion::FusionOptions& fusion,

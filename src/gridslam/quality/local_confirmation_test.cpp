@@ -1,5 +1,7 @@
 #include "gridslam/quality/local_confirmation.hpp"
 
+#include <stdexcept>
+
 #include <gtest/gtest.h>
 
 #include "gridslam/grid/scan_points.hpp"
@@ -95,6 +97,28 @@ TEST(LocalConfirmation, AMisalignedLegIsConfirmedByItsOwnStretch) {
     for (const auto v : f) whole_confirmed += v;
   }
   EXPECT_LT(whole_confirmed, confirmed);
+}
+
+TEST(LocalConfirmation, AStretchTooLargeToFuseConfirmsEveryReturn) {
+  // Two returns 900 m away at right angles, at a 5 mm resolution: 1.6e10 cells, more than a map
+  // may hold.
+  LaserScan scan;
+  scan.angle_min = 0.0;
+  scan.angle_increment = 1.5707963267948966;
+  scan.range_min = 0.1;
+  scan.range_max = 1000.0;
+  scan.ranges = {900.0F, 900.0F};
+  const std::vector<fusion::PosedScan> posed = {{Pose2(), Pose2(), &scan}};
+  fusion::FusionOptions fusion;
+  fusion.resolution = 0.005;
+  fusion.max_range = 1000.0;
+  SelfCheckOptions options = EveryScan();
+  options.max_range = 1000.0;
+  ASSERT_THROW((void)fusion::FuseScans(posed, fusion), std::length_error);
+  std::vector<std::vector<std::uint8_t>> flags;
+  ASSERT_NO_THROW(flags = LocalConfirmation(posed, fusion, options));
+  ASSERT_EQ(flags.size(), 1U);
+  EXPECT_EQ(flags[0], std::vector<std::uint8_t>({1, 1}));
 }
 
 TEST(LocalConfirmation, TheSameFlagsWhateverTheThreads) {
