@@ -1,6 +1,8 @@
 #include "gridslam/quality/local_confirmation.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +19,17 @@ SelfCheckOptions EveryScan() {
   SelfCheckOptions options;
   options.min_motion = 0.0;  // replay every scan
   return options;
+}
+
+// Confirmed returns and all returns of LocalConfirmation's flags.
+std::pair<long, long> Counts(const std::vector<std::vector<std::uint8_t>>& flags) {
+  long confirmed = 0;
+  long returns = 0;
+  for (const auto& f : flags) {
+    confirmed += std::count(f.begin(), f.end(), std::uint8_t{1});
+    returns += static_cast<long>(f.size());
+  }
+  return {confirmed, returns};
 }
 
 // The scan's beams straight ahead (index 180 of 360, angle 0) end on a passer-by 1 m ahead.
@@ -47,15 +60,12 @@ TEST(LocalConfirmation, OneFlagPerReturnOfEveryReplayedScan) {
   const auto flags = LocalConfirmation(run.posed, fusion::FusionOptions{}, options);
   ASSERT_EQ(flags.size(), run.posed.size());
   EXPECT_TRUE(flags[3].empty());
-  long confirmed = 0;
-  long returns = 0;
   for (std::size_t s = 0; s < run.posed.size(); ++s) {
     if (s == 3) continue;
     const ScanReturns r = ExtractScanReturns(run.scans[s], Pose2(), options.max_range);
     ASSERT_EQ(flags[s].size(), r.points.size()) << "scan " << s;
-    for (const auto f : flags[s]) confirmed += f;
-    returns += static_cast<long>(r.points.size());
   }
+  const auto [confirmed, returns] = Counts(flags);
   // The walls of a static room, seen along one leg at a time: nearly every return confirmed.
   EXPECT_GT(static_cast<double>(confirmed) / static_cast<double>(returns), 0.97);
 }
@@ -81,21 +91,14 @@ TEST(LocalConfirmation, AMisalignedLegIsConfirmedByItsOwnStretch) {
   // The way back is off by 0.5 m; each leg is one stretch of 10 m, so each leg's walls confirm
   // its own returns: what the final map then contradicts is the misalignment.
   const SimRun run = MakeRun(0.0, 0.5);
-  const auto flags = LocalConfirmation(run.posed, fusion::FusionOptions{}, EveryScan());
-  long confirmed = 0;
-  long returns = 0;
-  for (const auto& f : flags) {
-    for (const auto v : f) confirmed += v;
-    returns += static_cast<long>(f.size());
-  }
+  const auto [confirmed, returns] =
+      Counts(LocalConfirmation(run.posed, fusion::FusionOptions{}, EveryScan()));
   EXPECT_GT(static_cast<double>(confirmed) / static_cast<double>(returns), 0.97);
   // One stretch over both legs would see the double walls itself.
   SelfCheckOptions whole = EveryScan();
   whole.local_travel = 1000.0;
-  long whole_confirmed = 0;
-  for (const auto& f : LocalConfirmation(run.posed, fusion::FusionOptions{}, whole)) {
-    for (const auto v : f) whole_confirmed += v;
-  }
+  const long whole_confirmed =
+      Counts(LocalConfirmation(run.posed, fusion::FusionOptions{}, whole)).first;
   EXPECT_LT(whole_confirmed, confirmed);
 }
 
